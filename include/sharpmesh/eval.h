@@ -1,0 +1,69 @@
+// Evaluation tools (thesis 7.5, 8.2): sampling of reference meshes, sharp
+// edges of a reference, distances between meshes, topology checks.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sharpmesh/progress.h"
+#include "sharpmesh/types.h"
+
+namespace sharpmesh {
+
+/// Points uniformly distributed over the area of a mesh, with optional
+/// uniform noise of amplitude `noise` times the bounding-box diagonal (each
+/// coordinate offset uniformly in [-a, a], the thesis's noise model, 7.5).
+struct SampleOptions {
+  std::size_t count = 100'000;
+  double noise = 0.0;  ///< fraction of the bounding-box diagonal
+  std::uint64_t seed = 0;
+  bool with_normals = false;  ///< store the facet normal of each sample
+  void check() const;
+};
+PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options);
+
+/// Edges whose two incident facets make an angle above `angle_deg` (0: flat),
+/// chained into polylines that run between vertices of sharp degree != 2
+/// (closed loops are returned with front() == back()).
+std::vector<Polyline> sharp_edges(const SurfaceMesh& mesh, double angle_deg = 30.0);
+
+/// Combinatorial and geometric checks of a triangle mesh.
+struct TopologyReport {
+  std::size_t vertices = 0, faces = 0;
+  std::size_t boundary_edges = 0;
+  std::size_t non_manifold_edges = 0;
+  std::size_t non_manifold_vertices = 0;
+  std::size_t degenerate_faces = 0;
+  std::size_t components = 0;
+  bool orientable = true;
+  bool self_intersecting = false;
+  bool closed() const { return boundary_edges == 0 && faces > 0; }
+  bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0 && orientable; }
+};
+TopologyReport check_topology(const SurfaceMesh& mesh, bool test_self_intersections = true);
+
+/// Distances from `mesh` to `reference`, both ways, from uniform samples of
+/// each surface (plus their vertices). All distances in the data's units;
+/// `diagonal` is the reference's bounding-box diagonal.
+struct DistanceOptions {
+  std::size_t samples = 200'000;  ///< per surface
+  std::uint64_t seed = 0;
+  double sharp_angle = 30.0;      ///< degrees, for sharp-edge fidelity
+  void check() const;
+};
+struct DistanceReport {
+  double diagonal = 0;
+  double hausdorff = 0;          ///< max of the two one-sided maxima
+  double mesh_to_reference_max = 0, reference_to_mesh_max = 0;
+  double mesh_to_reference_mean = 0, reference_to_mesh_mean = 0;
+  double mean = 0, rms = 0;      ///< over samples of both sides
+  std::size_t sharp_edge_count = 0;
+  double sharp_edge_length = 0;
+  double sharp_mean = 0, sharp_max = 0;  ///< reference sharp edges -> mesh
+};
+DistanceReport compare_meshes(const SurfaceMesh& mesh, const SurfaceMesh& reference,
+                              const DistanceOptions& options = {}, const Progress& progress = {});
+
+double surface_area(const SurfaceMesh& mesh);
+
+}  // namespace sharpmesh

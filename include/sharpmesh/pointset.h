@@ -1,0 +1,77 @@
+// The point-set toolbox of the thesis's Appendix A, on CGAL's
+// Point_set_processing_3, parallel where CGAL allows (TBB).
+// All distances are in the data's units unless stated.
+#pragma once
+
+#include <cstdint>
+
+#include "sharpmesh/progress.h"
+#include "sharpmesh/types.h"
+
+namespace sharpmesh {
+
+/// Throws InvalidInput when the set has NaN/inf coordinates, fewer than
+/// `min_points` points, or all points at one location.
+void check_point_set(const PointSet& points, std::size_t min_points, const char* what);
+
+/// Mean distance from each point to its k nearest neighbours (App. A.3).
+/// k = 6 is the thesis's unit length `avg` (7.3.2).
+double average_spacing(const PointSet& points, int k = 6, const Progress& progress = {});
+
+/// Removes `percentage` % of the points with the largest average squared
+/// distance to their k nearest neighbours (App. A.4). Returns the count removed.
+struct PercentageOutlierOptions {
+  int k = 24;               ///< App. A.4 example
+  double percentage = 5.0;  ///< App. A.4 example
+  void check(std::size_t n) const;
+};
+std::size_t remove_outliers_percentage(PointSet& points, const PercentageOutlierOptions& options = {},
+                                       const Progress& progress = {});
+
+/// The 3-sigma rule of Section 6.3.1: d_k(p) is the average squared distance
+/// from p to its k nearest neighbours; points with d_k > mean + sigmas * stddev
+/// are removed. Returns the count removed.
+struct SigmaOutlierOptions {
+  int k = 150;          ///< Section 6.3.1
+  double sigmas = 3.0;  ///< Section 6.3.1
+  void check(std::size_t n) const;
+};
+std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& options = {},
+                                  const Progress& progress = {});
+
+/// Keeps one point per cell of a regular grid of the given cell size (App. A.5).
+std::size_t grid_simplify(PointSet& points, double cell_size);
+
+/// Removes `percentage` % of the points at random, reproducibly for a seed (App. A.5).
+std::size_t random_simplify(PointSet& points, double percentage, std::uint64_t seed = 0);
+
+/// Projects each point onto a jet (quadric) fitted over its k nearest neighbours (App. A.6).
+struct JetSmoothingOptions {
+  int k = 24;  ///< App. A.6 ("default is 24 for real-world point sets")
+  void check(std::size_t n) const;
+};
+void jet_smooth(PointSet& points, const JetSmoothingOptions& options = {}, const Progress& progress = {});
+
+/// Unoriented normal estimation over k nearest neighbours (App. A.7).
+enum class NormalMethod { Pca, Jet };
+struct NormalEstimationOptions {
+  NormalMethod method = NormalMethod::Jet;
+  int k = 18;  ///< App. A.8 example ("3 rings")
+  void check(std::size_t n) const;
+};
+void estimate_normals(PointSet& points, const NormalEstimationOptions& options = {},
+                      const Progress& progress = {});
+
+/// Orients normals by propagation along a minimum spanning tree of the
+/// k-nearest-neighbour graph (Hoppe et al. 1992; App. A.8). Points whose
+/// normal could not be oriented are moved to the end and, if
+/// `remove_unoriented`, removed. Returns the number of unoriented points.
+struct NormalOrientationOptions {
+  int k = 18;  ///< App. A.8 example
+  bool remove_unoriented = true;
+  void check(std::size_t n) const;
+};
+std::size_t orient_normals_mst(PointSet& points, const NormalOrientationOptions& options = {},
+                               const Progress& progress = {});
+
+}  // namespace sharpmesh

@@ -1,0 +1,39 @@
+#include "eval/triangle_distance.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+
+#include "pointset/cgal_bridge.h"
+
+namespace sharpmesh::detail {
+namespace {
+using Triangle3 = Kernel::Triangle_3;
+using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle3>::const_iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+}  // namespace
+
+struct TriangleDistance::Impl {
+  std::vector<Triangle3> triangles;
+  Tree tree;
+};
+
+TriangleDistance::TriangleDistance(const SurfaceMesh& mesh) : impl_(std::make_unique<Impl>()) {
+  impl_->triangles.reserve(mesh.faces.size());
+  for (const Triangle& f : mesh.faces) {
+    Triangle3 t(to_cgal(mesh.vertices[f[0]]), to_cgal(mesh.vertices[f[1]]), to_cgal(mesh.vertices[f[2]]));
+    if (!t.is_degenerate()) impl_->triangles.push_back(t);
+  }
+  if (impl_->triangles.empty()) throw InvalidInput("the mesh has no non-degenerate triangle");
+  impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
+  impl_->tree.build();
+  impl_->tree.accelerate_distance_queries();
+}
+
+TriangleDistance::~TriangleDistance() = default;
+
+double TriangleDistance::squared_distance(const Vec3& q) const { return impl_->tree.squared_distance(to_cgal(q)); }
+
+Vec3 TriangleDistance::closest_point(const Vec3& q) const { return from_cgal(impl_->tree.closest_point(to_cgal(q))); }
+
+}  // namespace sharpmesh::detail

@@ -1,0 +1,58 @@
+// Poisson implicit function (Kazhdan et al. 2006) through CGAL's
+// Poisson_reconstruction_function (thesis 7.3, 7.4).
+#include <CGAL/Poisson_reconstruction_function.h>
+#include <CGAL/property_map.h>
+
+#include <cmath>
+
+#include "pointset/cgal_bridge.h"
+#include "sharpmesh/implicit.h"
+#include "sharpmesh/pointset.h"
+
+namespace sharpmesh {
+namespace {
+
+using detail::Kernel;
+using PointWithNormal = std::pair<detail::Point3, detail::Vector3>;
+using Function = CGAL::Poisson_reconstruction_function<Kernel>;
+
+class PoissonSurface final : public ImplicitSurface {
+ public:
+  explicit PoissonSurface(std::vector<PointWithNormal> samples)
+      : samples_(std::move(samples)),
+        function_(samples_.begin(), samples_.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
+                  CGAL::Second_of_pair_property_map<PointWithNormal>()) {}
+
+  bool solve() { return function_.compute_implicit_function(); }
+  double value(const Vec3& p) const override { return function_(detail::to_cgal(p)); }
+  Vec3 bounding_center() const override { return detail::from_cgal(function_.bounding_sphere().center()); }
+  double bounding_radius() const override { return std::sqrt(function_.bounding_sphere().squared_radius()); }
+  Vec3 inside_point() const override { return detail::from_cgal(function_.get_inner_point()); }
+
+ private:
+  std::vector<PointWithNormal> samples_;
+  Function function_;
+};
+
+}  // namespace
+
+std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const PoissonOptions& options, const Progress& progress) {
+  options.check();
+  check_point_set(points, 4, "Poisson reconstruction");
+  if (!points.has_normals()) throw InvalidArgument("Poisson reconstruction needs oriented normals");
+  std::vector<PointWithNormal> samples;
+  samples.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3& n = points.normals[i];
+    if (!(norm(n) > 0)) continue;  // a zero normal carries no orientation
+    samples.emplace_back(detail::to_cgal(points.points[i]), detail::to_cgal_vector(n));
+  }
+  if (samples.size() < 4) throw InvalidInput("Poisson reconstruction: fewer than 4 points have a usable normal");
+  report_progress(progress, "poisson", 0.0);
+  auto surface = std::make_unique<PoissonSurface>(std::move(samples));
+  if (!surface->solve()) throw NumericalFailure("Poisson reconstruction: the linear solver failed");
+  report_progress(progress, "poisson", 1.0);
+  return surface;
+}
+
+}  // namespace sharpmesh

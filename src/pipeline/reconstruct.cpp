@@ -1,0 +1,70 @@
+// The Chapter 7 pipeline, PIF baseline (7.3.1): normals, Poisson implicit
+// function, Delaunay refinement with the 7.3.2 criteria.
+#include "sharpmesh/reconstruct.h"
+
+#include <cmath>
+
+#include "sharpmesh/errors.h"
+#include "sharpmesh/implicit.h"
+
+namespace sharpmesh {
+
+void ReconstructOptions::check(std::size_t n) const {
+  if (!(delta > 0) || !std::isfinite(delta))
+    throw InvalidArgument("delta must be positive (got " + std::to_string(delta) + ")");
+  if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
+    throw InvalidArgument("spacing k = " + std::to_string(spacing_k) + " needs more than k points, the set has " + std::to_string(n));
+}
+
+double estimated_area_from_spacing(std::size_t n, double average_spacing) {
+  // For uniform samples, the mean distance to the 6 nearest neighbours is
+  // about 0.77 sqrt(area / n) (measured on CGAL's fandisk, cube and sphere).
+  const double per_point = average_spacing / 0.77;
+  return static_cast<double>(n) * per_point * per_point;
+}
+
+ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
+  check_point_set(input, 10, "reconstruction");
+  options.check(input.size());
+  ReconstructResult result;
+  result.input_points = input.size();
+
+  {
+    StageTimer timer(result.stages, "spacing");
+    result.average_spacing = average_spacing(input, options.spacing_k, progress);
+  }
+  if (!(result.average_spacing > 0)) throw InvalidInput("reconstruction: the average spacing is zero (duplicated points?)");
+  result.d_prime = options.delta * result.average_spacing;
+  result.criteria = RefinementCriteria::from_spacing(result.d_prime);
+  const double estimate = estimate_facet_count(estimated_area_from_spacing(input.size(), result.average_spacing), result.criteria);
+  result.estimated_facets = estimate;
+  if (options.max_facets > 0 && estimate > static_cast<double>(options.max_facets))
+    throw InvalidArgument("delta = " + std::to_string(options.delta) + " would give about " + std::to_string(static_cast<long long>(estimate)) +
+                          " facets, above the limit of " + std::to_string(options.max_facets) + " (raise delta or --max-facets)");
+
+  PointSet oriented = input;
+  if (!input.has_normals() || options.recompute_normals) {
+    StageTimer timer(result.stages, "normals");
+    estimate_normals(oriented, options.normals, progress);
+    orient_normals_mst(oriented, options.orientation, progress);
+    result.normals_estimated = true;
+  }
+  result.used_points = oriented.size();
+
+  std::unique_ptr<ImplicitSurface> surface;
+  {
+    StageTimer timer(result.stages, "poisson");
+    surface = poisson_surface(oriented, PoissonOptions{}, progress);
+  }
+  {
+    StageTimer timer(result.stages, "refinement");
+    ImplicitMeshingOptions meshing;
+    meshing.criteria = result.criteria;
+    meshing.max_facets = options.max_facets;
+    meshing.seed = options.seed;
+    result.mesh = mesh_implicit_surface(*surface, meshing, progress);
+  }
+  return result;
+}
+
+}  // namespace sharpmesh

@@ -1,0 +1,56 @@
+// Point-set checks and average spacing (thesis App. A.3, 7.3.2).
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "pointset/knn.h"
+#include "sharpmesh/errors.h"
+#include "sharpmesh/pointset.h"
+
+namespace sharpmesh {
+
+void check_point_set(const PointSet& points, std::size_t min_points, const char* what) {
+  if (points.size() < min_points)
+    throw InvalidInput(std::string(what) + " needs at least " + std::to_string(min_points) + " points, the set has " +
+                       std::to_string(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points.points[i];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InvalidInput("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)");
+  }
+  const double diagonal = bounding_box(points.points).diagonal();
+  if (!(diagonal > 0) || !std::isfinite(diagonal))
+    throw InvalidInput(std::string(what) + ": all points are at the same location (or the extent overflows)");
+}
+
+double average_spacing(const PointSet& points, int k, const Progress& progress) {
+  if (k < 1) throw InvalidArgument("average spacing: k must be at least 1 (got " + std::to_string(k) + ")");
+  check_point_set(points, static_cast<std::size_t>(k) + 1, "average spacing");
+  // The thesis's avg is the mean distance to the k nearest *other* points.
+  // CGAL 5.5's compute_average_spacing counts the point itself among the k
+  // (its result is k/(k+1) of this), so the kd-tree is queried directly.
+  report_progress(progress, "average spacing", 0.0);
+  const detail::KnnIndex index(points.points);
+  std::vector<double> mean(points.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      index.nearest(points.points[i], k + 1, ids, d2);
+      double sum = 0;
+      int count = 0;
+      for (std::size_t j = 0; j < ids.size() && count < k; ++j) {
+        if (ids[j] == i) continue;
+        sum += std::sqrt(d2[j]);
+        ++count;
+      }
+      mean[i] = count > 0 ? sum / count : 0.0;
+    }
+  });
+  double total = 0;  // summed in order: independent of the thread count
+  for (double m : mean) total += m;
+  report_progress(progress, "average spacing", 1.0);
+  return total / static_cast<double>(points.size());
+}
+
+}  // namespace sharpmesh

@@ -1,0 +1,31 @@
+// k-nearest-neighbour and radius queries on a fixed point set (CGAL kd-tree
+// behind a plain interface). Queries are thread-safe once constructed.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "sharpmesh/types.h"
+
+namespace sharpmesh::detail {
+
+class KnnIndex {
+ public:
+  explicit KnnIndex(const std::vector<Vec3>& points);
+  ~KnnIndex();
+  KnnIndex(const KnnIndex&) = delete;
+  KnnIndex& operator=(const KnnIndex&) = delete;
+
+  /// The k nearest points to q (q itself included if it is in the set),
+  /// nearest first: indices and squared distances.
+  void nearest(const Vec3& q, int k, std::vector<std::uint32_t>& indices, std::vector<double>& squared_distances) const;
+  /// All points within `radius` of q, in no particular order.
+  void within(const Vec3& q, double radius, std::vector<std::uint32_t>& indices) const;
+  std::size_t size() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sharpmesh::detail

@@ -1,0 +1,82 @@
+// Normal estimation by PCA or jet fitting (App. A.7) and MST orientation
+// (Hoppe et al. 1992; App. A.8).
+#include <CGAL/jet_estimate_normals.h>
+#include <CGAL/mst_orient_normals.h>
+#include <CGAL/pca_estimate_normals.h>
+
+#include <tuple>
+
+#include "pointset/cgal_bridge.h"
+#include "sharpmesh/pointset.h"
+
+namespace sharpmesh {
+namespace {
+
+using Record = std::tuple<detail::Point3, detail::Vector3, std::uint32_t>;
+using PointMap = CGAL::Nth_of_tuple_property_map<0, Record>;
+using NormalMap = CGAL::Nth_of_tuple_property_map<1, Record>;
+
+std::vector<Record> make_records(const PointSet& points) {
+  std::vector<Record> records;
+  records.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    records.emplace_back(detail::to_cgal(points.points[i]),
+                         points.has_normals() ? detail::to_cgal_vector(points.normals[i]) : detail::Vector3(0, 0, 0),
+                         static_cast<std::uint32_t>(i));
+  return records;
+}
+
+void check_k(int k, int minimum, std::size_t n, const char* what) {
+  if (k < minimum)
+    throw InvalidArgument(std::string(what) + ": k must be at least " + std::to_string(minimum) + " (got " + std::to_string(k) + ")");
+  if (static_cast<std::size_t>(k) >= n)
+    throw InvalidArgument(std::string(what) + ": k = " + std::to_string(k) + " needs more than k points, the set has " + std::to_string(n));
+}
+
+}  // namespace
+
+void NormalEstimationOptions::check(std::size_t n) const {
+  check_k(k, method == NormalMethod::Jet ? 6 : 3, n, "normal estimation");
+}
+
+void NormalOrientationOptions::check(std::size_t n) const { check_k(k, 2, n, "normal orientation"); }
+
+void estimate_normals(PointSet& points, const NormalEstimationOptions& options, const Progress& progress) {
+  check_point_set(points, 4, "normal estimation");
+  options.check(points.size());
+  std::vector<Record> records = make_records(points);
+  report_progress(progress, "normal estimation", 0.0);
+  const auto np = CGAL::parameters::point_map(PointMap()).normal_map(NormalMap());
+  if (options.method == NormalMethod::Jet)
+    CGAL::jet_estimate_normals<CGAL::Parallel_if_available_tag>(records, static_cast<unsigned>(options.k), np);
+  else
+    CGAL::pca_estimate_normals<CGAL::Parallel_if_available_tag>(records, static_cast<unsigned>(options.k), np);
+  report_progress(progress, "normal estimation", 1.0);
+  points.normals.resize(points.size());
+  for (const Record& r : records) {
+    Vec3 n = detail::from_cgal(std::get<1>(r));
+    const double length = norm(n);
+    points.normals[std::get<2>(r)] = length > 0 && std::isfinite(length) ? (1.0 / length) * n : Vec3{0, 0, 0};
+  }
+}
+
+std::size_t orient_normals_mst(PointSet& points, const NormalOrientationOptions& options, const Progress& progress) {
+  check_point_set(points, 4, "normal orientation");
+  options.check(points.size());
+  if (!points.has_normals()) throw InvalidArgument("normal orientation: the points have no normals to orient");
+  std::vector<Record> records = make_records(points);
+  report_progress(progress, "normal orientation", 0.0);
+  const auto first_unoriented = CGAL::mst_orient_normals(records, static_cast<unsigned>(options.k),
+                                                         CGAL::parameters::point_map(PointMap()).normal_map(NormalMap()));
+  report_progress(progress, "normal orientation", 1.0);
+  std::vector<bool> keep(points.size(), true);
+  for (auto it = records.begin(); it != records.end(); ++it) {
+    points.normals[std::get<2>(*it)] = detail::from_cgal(std::get<1>(*it));
+    if (it >= first_unoriented) keep[std::get<2>(*it)] = false;
+  }
+  const std::size_t unoriented = static_cast<std::size_t>(records.end() - first_unoriented);
+  if (options.remove_unoriented && unoriented > 0) points.keep_if(keep);
+  return unoriented;
+}
+
+}  // namespace sharpmesh

@@ -1,0 +1,95 @@
+// Outlier removal: a percentage of the most isolated points (App. A.4) and
+// the 3-sigma rule on the average squared kNN distance (Section 6.3.1).
+#include <CGAL/remove_outliers.h>
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "pointset/cgal_bridge.h"
+#include "pointset/knn.h"
+#include "sharpmesh/pointset.h"
+
+namespace sharpmesh {
+namespace {
+
+void check_k(int k, std::size_t n, const char* what) {
+  if (k < 1) throw InvalidArgument(std::string(what) + ": k must be at least 1 (got " + std::to_string(k) + ")");
+  if (static_cast<std::size_t>(k) >= n)
+    throw InvalidArgument(std::string(what) + ": k = " + std::to_string(k) + " needs more than k points, the set has " +
+                          std::to_string(n));
+}
+
+}  // namespace
+
+void PercentageOutlierOptions::check(std::size_t n) const {
+  check_k(k, n, "outlier removal");
+  if (!(percentage >= 0 && percentage <= 100))
+    throw InvalidArgument("outlier removal: percentage must be in [0, 100] (got " + std::to_string(percentage) + ")");
+}
+
+void SigmaOutlierOptions::check(std::size_t n) const {
+  check_k(k, n, "3-sigma outlier removal");
+  if (!(sigmas > 0) || !std::isfinite(sigmas))
+    throw InvalidArgument("3-sigma outlier removal: the number of standard deviations must be positive (got " +
+                          std::to_string(sigmas) + ")");
+}
+
+std::size_t remove_outliers_percentage(PointSet& points, const PercentageOutlierOptions& options, const Progress& progress) {
+  check_point_set(points, 2, "outlier removal");
+  options.check(points.size());
+  const std::vector<detail::Point3> cgal_points = detail::to_cgal(points.points);
+  std::vector<std::uint32_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0u);
+  report_progress(progress, "outlier removal", 0.0);
+  auto first_removed = CGAL::remove_outliers<CGAL::Parallel_if_available_tag>(
+      order, static_cast<unsigned>(options.k),
+      CGAL::parameters::point_map(detail::IndexedPointMap{&cgal_points})
+          .threshold_percent(options.percentage)
+          .threshold_distance(0.0));
+  report_progress(progress, "outlier removal", 1.0);
+  std::vector<bool> keep(points.size(), true);
+  for (auto it = first_removed; it != order.end(); ++it) keep[*it] = false;
+  const std::size_t removed = static_cast<std::size_t>(order.end() - first_removed);
+  points.keep_if(keep);
+  return removed;
+}
+
+std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& options, const Progress& progress) {
+  check_point_set(points, 2, "3-sigma outlier removal");
+  options.check(points.size());
+  const std::size_t n = points.size();
+  report_progress(progress, "3-sigma outlier removal", 0.0);
+  const detail::KnnIndex index(points.points);
+  std::vector<double> dk(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      index.nearest(points.points[i], options.k + 1, ids, d2);  // +1: the point itself is its own nearest
+      double sum = 0;
+      for (std::size_t j = 1; j < d2.size(); ++j) sum += d2[j];
+      dk[i] = sum / options.k;
+    }
+  });
+  report_progress(progress, "3-sigma outlier removal", 1.0);
+  // Mean and standard deviation of d_k; Section 6.3.1 removes points above mean + 3 sigma.
+  double mean = 0;
+  for (double d : dk) mean += d;
+  mean /= n;
+  double variance = 0;
+  for (double d : dk) variance += (d - mean) * (d - mean);
+  const double sigma = std::sqrt(variance / n);
+  const double threshold = mean + options.sigmas * sigma;
+  std::vector<bool> keep(n);
+  std::size_t removed = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    keep[i] = dk[i] <= threshold;
+    removed += !keep[i];
+  }
+  points.keep_if(keep);
+  return removed;
+}
+
+}  // namespace sharpmesh

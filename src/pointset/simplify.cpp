@@ -1,0 +1,53 @@
+// Point-set simplification (App. A.5): grid clustering and random removal.
+#include <CGAL/grid_simplify_point_set.h>
+
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "pointset/cgal_bridge.h"
+#include "sharpmesh/pointset.h"
+
+namespace sharpmesh {
+
+std::size_t grid_simplify(PointSet& points, double cell_size) {
+  check_point_set(points, 1, "grid simplification");
+  if (!(cell_size > 0) || !std::isfinite(cell_size))
+    throw InvalidArgument("grid simplification: cell size must be positive (got " + std::to_string(cell_size) + ")");
+  const double diagonal = bounding_box(points.points).diagonal();
+  if (diagonal / cell_size > 1e7)
+    throw InvalidArgument("grid simplification: cell size " + std::to_string(cell_size) + " is below 1e-7 of the diagonal");
+  const std::vector<detail::Point3> cgal_points = detail::to_cgal(points.points);
+  std::vector<std::uint32_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const detail::IndexedPointMap position{&cgal_points};
+  auto first_removed = CGAL::grid_simplify_point_set(order, cell_size, CGAL::parameters::point_map(position));
+  std::vector<bool> keep(points.size(), true);
+  for (auto it = first_removed; it != order.end(); ++it) keep[*it] = false;
+  const std::size_t removed = static_cast<std::size_t>(order.end() - first_removed);
+  points.keep_if(keep);
+  return removed;
+}
+
+// CGAL's random_simplify_point_set draws from std::rand, which cannot be seeded
+// per call; this keeps the same semantics with a seeded generator so that
+// results are reproducible.
+std::size_t random_simplify(PointSet& points, double percentage, std::uint64_t seed) {
+  if (!(percentage >= 0 && percentage <= 100))
+    throw InvalidArgument("random simplification: percentage must be in [0, 100] (got " + std::to_string(percentage) + ")");
+  const std::size_t n = points.size();
+  const std::size_t remove = static_cast<std::size_t>(std::floor(n * percentage / 100.0));
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::mt19937_64 rng(seed);
+  for (std::size_t i = 0; i < remove; ++i) {  // partial Fisher-Yates: the first `remove` are dropped
+    std::uniform_int_distribution<std::size_t> pick(i, n - 1);
+    std::swap(order[i], order[pick(rng)]);
+  }
+  std::vector<bool> keep(n, true);
+  for (std::size_t i = 0; i < remove; ++i) keep[order[i]] = false;
+  points.keep_if(keep);
+  return remove;
+}
+
+}  // namespace sharpmesh

@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# Command-line tests: cli_test.sh CASE SHARPMESH_BINARY DATA_DIR
+# Failure cases check: exit code 1 or 2, a one-line message naming the
+# problem, and no output file left behind (not even a temporary).
+set -uo pipefail
+case_name=$1 bin=$2 data=$3
+work=$(mktemp -d)
+trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
+cd "$work"
+
+fail() { echo "FAIL [$case_name]: $*" >&2; exit 1; }
+
+# expect_error CODE PATTERN OUTPUT -- command...
+expect_error() {
+  local code=$1 pattern=$2 output=$3; shift 3
+  "$@" >stdout.txt 2>stderr.txt
+  local rc=$?
+  [[ $rc -eq $code ]] || { cat stderr.txt >&2; fail "exit code $rc, expected $code"; }
+  # Progress lines may come first; the error is one line, the last one.
+  [[ $(grep -c '^sharpmesh: ' stderr.txt) -eq 1 ]] || { cat stderr.txt >&2; fail "expected a one-line message"; }
+  tail -n 1 stderr.txt | grep -q '^sharpmesh: ' || { cat stderr.txt >&2; fail "the message is not the last line"; }
+  tail -n 1 stderr.txt | grep -q -- "$pattern" || { cat stderr.txt >&2; fail "message does not mention '$pattern'"; }
+  [[ -z "$output" || ! -e "$output" ]] || fail "output $output was left behind"
+  ls -a | grep -q '\.tmp\.' && fail "a temporary file was left behind"
+  return 0
+}
+
+cloud() {  # cloud N FILE: N points on a small sphere-like spiral (no two equal)
+  python3 - "$1" "$2" <<'PY'
+import math, sys
+n, path = int(sys.argv[1]), sys.argv[2]
+with open(path, "w") as f:
+    for i in range(n):
+        z = 1 - 2 * (i + 0.5) / n; r = math.sqrt(1 - z * z); a = i * 2.399963
+        f.write(f"{r*math.cos(a)} {r*math.sin(a)} {z}\n")
+PY
+}
+
+case "$case_name" in
+  help)
+    for cmd in "" info clean sample eval reconstruct; do
+      $bin $cmd --help >out.txt || fail "--help of '$cmd' failed"
+      grep -q "Usage" out.txt || fail "--help of '$cmd' shows no usage"
+    done ;;
+  version) $bin --version | grep -q "sharpmesh" || fail "no version" ;;
+  info)
+    cloud 500 c.xyz
+    $bin info c.xyz --report r.json >out.txt || fail "info failed"
+    grep -q "points: *500" out.txt || fail "wrong count"
+    python3 -c "import json; r=json.load(open('r.json')); assert r['counts']['points']==500 and r['average_spacing']['value']>0" || fail "bad report" ;;
+  clean)
+    cloud 2000 c.xyz
+    echo "50 50 50" >> c.xyz
+    $bin clean c.xyz -o out.ply --outliers-sigma 3 --sigma-k 24 --smooth 24 --normals jet --orient --report r.json -q || fail "clean failed"
+    python3 -c "import json; r=json.load(open('r.json')); c=r['counts']; assert c['removed_outliers_sigma']>=1 and c['output']>=1990, c" || fail "bad counts"
+    $bin info out.ply | grep -q "normals: *yes" || fail "no normals written" ;;
+  sample-eval)
+    $bin sample "$data/meshes/cube.off" -n 5000 --seed 3 -o s.ply --sharp-edges e.txt -q || fail "sample failed"
+    [[ $(wc -l < e.txt) -eq 12 ]] || fail "cube should have 12 sharp polylines, got $(wc -l < e.txt)"
+    $bin eval "$data/meshes/cube.off" --reference "$data/meshes/cube.off" --json e.json >out.txt || fail "eval failed"
+    python3 -c "import json; e=json.load(open('e.json'))['evaluation']; assert e['hausdorff']['value']<1e-9 and e['topology']['closed']" || fail "bad eval" ;;
+  reconstruct-small)
+    $bin sample "$data/meshes/fandisk.off" -n 20000 --seed 1 -o s.ply -q || fail "sample failed"
+    $bin reconstruct s.ply -o m.off --no-features --report r.json -q || fail "reconstruct failed"
+    $bin eval m.off --reference "$data/meshes/fandisk.off" --json e.json -q || fail "eval failed"
+    python3 - <<'PY' || fail "reconstruction out of bounds"
+import json
+e = json.load(open("e.json"))["evaluation"]
+assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
+assert e["hausdorff"]["fraction_of_diagonal"] < 0.025, e["hausdorff"]
+r = json.load(open("r.json"))
+assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "refinement", "write"], r["stages"]
+PY
+    ;;
+  fandisk-200k)  # the foundation's acceptance claim: PIF on fandisk at 200k points
+    $bin sample "$data/meshes/fandisk.off" -n 200000 --seed 1 -o s.ply -q || fail "sample failed"
+    $bin reconstruct s.ply -o m.ply --no-features -q || fail "reconstruct failed"
+    $bin eval m.ply --reference "$data/meshes/fandisk.off" --json e.json -q || fail "eval failed"
+    python3 - <<'PY' || fail "fandisk 200k out of bounds"
+import json
+e = json.load(open("e.json"))["evaluation"]
+t = e["topology"]
+assert t["closed"] and t["manifold"] and not t["self_intersecting"], t
+assert e["hausdorff"]["fraction_of_diagonal"] < 0.01, e["hausdorff"]
+PY
+    ;;
+  report-json)
+    cloud 300 c.xyz
+    expect_error 2 "missing" "" $bin info c.xyz --report missing/r.json ;;
+  missing-file) expect_error 1 "nope.ply" "out.ply" $bin clean nope.ply -o out.ply ;;
+  unknown-extension) echo "0 0 0" > c.abc; expect_error 1 "unknown point-set format" "out.ply" $bin clean c.abc -o out.ply ;;
+  truncated-ply)
+    cloud 200 c.xyz; $bin clean c.xyz -o full.ply -q || fail "setup"
+    head -c 2000 full.ply > cut.ply
+    expect_error 1 "cut.ply.*truncated" "out.ply" $bin clean cut.ply -o out.ply ;;
+  huge-header)
+    printf 'ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0123' > h.ply
+    expect_error 1 "h.ply" "out.ply" $bin reconstruct h.ply -o out.ply --no-features ;;
+  nan-coordinate)
+    cloud 100 c.xyz; echo "nan 0 0" >> c.xyz
+    expect_error 1 "c.xyz: line 101" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features ;;
+  empty-cloud) : > e.xyz; expect_error 1 "at least" "out.ply" $bin reconstruct e.xyz -o out.ply --no-features ;;
+  three-points) printf '0 0 0\n1 0 0\n0 1 0\n' > t.xyz; expect_error 1 "at least" "out.ply" $bin reconstruct t.xyz -o out.ply --no-features ;;
+  k-too-large) cloud 50 c.xyz; expect_error 2 "k = 100" "out.ply" $bin clean c.xyz -o out.ply --smooth 100 ;;
+  zero-delta) cloud 500 c.xyz; expect_error 2 "delta must be positive" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features --delta 0 ;;
+  negative-delta) cloud 500 c.xyz; expect_error 2 "delta must be positive" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features --delta -2 ;;
+  delta-too-small) cloud 500 c.xyz; expect_error 2 "max-facets" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features --delta 0.0001 ;;
+  missing-output-folder) cloud 100 c.xyz; expect_error 2 "does not exist" "" $bin clean c.xyz -o no/such/dir/out.ply ;;
+  readonly-output-folder)
+    [[ $(id -u) -eq 0 ]] && { echo "running as root: permissions are not enforced, skipped"; exit 0; }
+    cloud 100 c.xyz; mkdir ro; chmod a-w ro
+    expect_error 2 "not writable" "ro/out.ply" $bin clean c.xyz -o ro/out.ply ;;
+  bad-option) expect_error 2 "banana" "" $bin reconstruct --delta banana ;;
+  laz-refused) printf 'LASF' > c.laz; expect_error 1 "LAZ" "out.ply" $bin clean c.laz -o out.ply ;;
+  *) fail "unknown case" ;;
+esac
+echo "PASS [$case_name]"

@@ -1,0 +1,112 @@
+// Sampling, sharp edges, topology checks and distances on analytic meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fixtures.h"
+#include "sharpmesh/errors.h"
+#include "sharpmesh/eval.h"
+
+using namespace sharpmesh;
+
+TEST(Sample, PointsLieOnTheCubeAndNoiseStaysWithinItsAmplitude) {
+  const SurfaceMesh cube = test::cube_mesh(0.5);
+  SampleOptions options;
+  options.count = 20000;
+  options.seed = 5;
+  const PointSet clean = sample_mesh(cube, options);
+  ASSERT_EQ(clean.size(), 20000u);
+  std::size_t per_face[6] = {0, 0, 0, 0, 0, 0};
+  for (const Vec3& p : clean.points) {
+    const double m = std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
+    EXPECT_NEAR(m, 0.5, 1e-12);
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(std::abs(p[k]) - 0.5) < 1e-12) { ++per_face[2 * k + (p[k] > 0)]; break; }
+  }
+  for (std::size_t n : per_face) EXPECT_NEAR(n / 20000.0, 1.0 / 6, 0.015);  // uniform per area
+  options.noise = 0.01;
+  const PointSet noisy = sample_mesh(cube, options);
+  const double amplitude = 0.01 * std::sqrt(3.0);
+  for (const Vec3& p : noisy.points) EXPECT_LE(std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}), 0.5 + amplitude);
+  EXPECT_EQ(sample_mesh(cube, options).points, noisy.points);  // same seed, same points
+}
+
+TEST(SharpEdges, CubeHasTwelveEdgesSphereNone) {
+  const std::vector<Polyline> edges = sharp_edges(test::cube_mesh(0.5));
+  EXPECT_EQ(edges.size(), 12u);
+  double length = 0;
+  for (const Polyline& p : edges) {
+    ASSERT_EQ(p.size(), 2u);
+    length += distance(p[0], p[1]);
+  }
+  EXPECT_NEAR(length, 12.0, 1e-12);
+  EXPECT_TRUE(sharp_edges(test::sphere_mesh(3)).empty());
+  // A cylinder: two closed circles (64 segments each), nothing along the side.
+  const std::vector<Polyline> circles = sharp_edges(test::cylinder_mesh(1.0, 2.0, 64));
+  ASSERT_EQ(circles.size(), 2u);
+  for (const Polyline& c : circles) {
+    EXPECT_EQ(c.size(), 65u);
+    EXPECT_EQ(c.front(), c.back());
+  }
+}
+
+TEST(Topology, ClosedManifoldCubeAndItsDefects) {
+  const SurfaceMesh cube = test::cube_mesh();
+  TopologyReport t = check_topology(cube);
+  EXPECT_TRUE(t.closed());
+  EXPECT_TRUE(t.manifold());
+  EXPECT_FALSE(t.self_intersecting);
+  EXPECT_EQ(t.components, 1u);
+
+  SurfaceMesh open = cube;
+  open.faces.pop_back();
+  t = check_topology(open);
+  EXPECT_FALSE(t.closed());
+  EXPECT_EQ(t.boundary_edges, 3u);
+
+  // Two cubes sharing one corner vertex: a non-manifold vertex.
+  SurfaceMesh two = cube;
+  const SurfaceMesh other = test::cube_mesh();
+  const auto offset = static_cast<std::uint32_t>(two.vertices.size());
+  for (Vec3 v : other.vertices) two.vertices.push_back(v + Vec3{1, 1, 1});
+  for (Triangle f : other.faces) {
+    for (auto& i : f) i = (i == 0) ? 7 : i + offset;  // corner 0 of the second cube is corner 7 of the first
+    two.faces.push_back(f);
+  }
+  t = check_topology(two);
+  EXPECT_EQ(t.non_manifold_vertices, 1u);
+  EXPECT_FALSE(t.manifold());
+
+  // Two interpenetrating cubes intersect each other.
+  SurfaceMesh crossing = cube;
+  for (Vec3 v : other.vertices) crossing.vertices.push_back(v + Vec3{0.3, 0.2, 0.1});
+  for (Triangle f : other.faces) crossing.faces.push_back({f[0] + 8, f[1] + 8, f[2] + 8});
+  EXPECT_TRUE(check_topology(crossing).self_intersecting);
+
+  // Flipping one face breaks consistent orientation.
+  SurfaceMesh flipped = cube;
+  std::swap(flipped.faces[0][1], flipped.faces[0][2]);
+  EXPECT_FALSE(check_topology(flipped, false).orientable);
+}
+
+TEST(Distances, IdenticalMeshesAreAtZeroAndAScaledCubeAtItsOffset) {
+  const SurfaceMesh cube = test::cube_mesh(0.5);
+  DistanceOptions options;
+  options.samples = 20000;
+  DistanceReport d = compare_meshes(cube, cube, options);
+  EXPECT_NEAR(d.hausdorff, 0.0, 1e-12);
+  EXPECT_EQ(d.sharp_edge_count, 12u);
+  EXPECT_NEAR(d.sharp_edge_length, 12.0, 1e-9);
+  const SurfaceMesh bigger = test::cube_mesh(0.51);
+  d = compare_meshes(bigger, cube, options);
+  // Faces are 0.01 apart, the corners sqrt(3) * 0.01; the small cube's edges
+  // lie inside the big one, 0.01 from its nearest faces.
+  EXPECT_NEAR(d.mean, 0.01, 1e-3);
+  EXPECT_NEAR(d.hausdorff, std::sqrt(3.0) * 0.01, 1e-9);
+  EXPECT_NEAR(d.sharp_max, 0.01, 1e-9);
+  EXPECT_NEAR(d.diagonal, std::sqrt(3.0), 1e-12);
+}
+
+TEST(Distances, RejectsEmptyMeshes) {
+  EXPECT_THROW(compare_meshes(SurfaceMesh{}, test::cube_mesh()), InvalidInput);
+}

@@ -1,0 +1,32 @@
+// Analytic test fixtures: meshes with known geometry, temporary folders.
+#pragma once
+
+#include <string>
+
+#include "sharpmesh/types.h"
+
+namespace sharpmesh::test {
+
+/// Axis-aligned cube [-h, h]^3 made of 12 outward-oriented triangles.
+SurfaceMesh cube_mesh(double half_size = 0.5);
+/// Unit sphere: an icosahedron subdivided `levels` times, projected onto the sphere.
+SurfaceMesh sphere_mesh(int levels = 3, double radius = 1.0);
+/// Closed cylinder of radius r, height h, around z, with `segments` sides.
+SurfaceMesh cylinder_mesh(double radius, double height, int segments);
+/// A fresh empty folder, removed with its content when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  std::string path(const std::string& name) const { return dir_ + "/" + name; }
+  const std::string& dir() const { return dir_; }
+  std::size_t file_count() const;
+
+ private:
+  std::string dir_;
+};
+/// Path of a file of CGAL's sample data, or "" when the data is not fetched.
+std::string data_file(const std::string& relative);
+void write_bytes(const std::string& path, const std::string& bytes);
+
+}  // namespace sharpmesh::test

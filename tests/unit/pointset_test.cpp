@@ -1,0 +1,155 @@
+// Point-set toolbox (App. A) on analytic fixtures.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "fixtures.h"
+#include "sharpmesh/errors.h"
+#include "sharpmesh/eval.h"
+#include "sharpmesh/pointset.h"
+
+using namespace sharpmesh;
+
+namespace {
+
+PointSet grid(int n, double h, double noise = 0, unsigned seed = 1) {
+  PointSet ps;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-noise, noise);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) ps.points.push_back({i * h, j * h, noise > 0 ? u(rng) : 0.0});
+  return ps;
+}
+
+PointSet sphere_points(std::size_t n, std::uint64_t seed = 3) {
+  SampleOptions options;
+  options.count = n;
+  options.seed = seed;
+  return sample_mesh(test::sphere_mesh(4), options);
+}
+
+}  // namespace
+
+TEST(AverageSpacing, IsTheMeanDistanceToTheKNearestOtherPoints) {
+  // Brute force on a jittered grid: sort the distances to every other point.
+  const PointSet ps = grid(25, 0.1, 0.03);
+  for (int k : {1, 4, 6}) {
+    double total = 0;
+    for (const Vec3& p : ps.points) {
+      std::vector<double> d;
+      for (const Vec3& q : ps.points)
+        if (&p != &q) d.push_back(distance(p, q));
+      std::sort(d.begin(), d.end());
+      for (int j = 0; j < k; ++j) total += d[j] / k;
+    }
+    EXPECT_NEAR(average_spacing(ps, k), total / ps.size(), 1e-12) << "k = " << k;
+  }
+}
+
+TEST(AverageSpacing, RejectsBadK) {
+  const PointSet ps = grid(3, 1.0);
+  EXPECT_THROW(average_spacing(ps, 0), InvalidArgument);
+  EXPECT_THROW(average_spacing(ps, 9), InvalidInput);  // 9 points cannot have 9 other neighbours
+}
+
+TEST(Outliers, ThreeSigmaRuleRemovesPlantedOutliersAndNothingElse) {
+  PointSet ps = grid(40, 0.05, 0.002);
+  const std::size_t clean = ps.size();
+  for (int i = 0; i < 6; ++i) ps.points.push_back({0.3 * i, 5.0 + i, 3.0 - i});
+  SigmaOutlierOptions options;
+  options.k = 24;
+  EXPECT_EQ(remove_outliers_sigma(ps, options), 6u);
+  ASSERT_EQ(ps.size(), clean);
+  for (const Vec3& p : ps.points) EXPECT_LT(std::abs(p[2]), 0.01);
+}
+
+TEST(Outliers, PercentageRemovesTheMostIsolatedPoints) {
+  PointSet ps = grid(20, 0.05);
+  for (int i = 0; i < 4; ++i) ps.points.push_back({10.0 * (i + 1), 0, 0});
+  PercentageOutlierOptions options;
+  options.k = 8;
+  options.percentage = 100.0 * 4 / ps.size();
+  EXPECT_EQ(remove_outliers_percentage(ps, options), 4u);
+  for (const Vec3& p : ps.points) EXPECT_LT(p[0], 1.0);
+  EXPECT_THROW(remove_outliers_percentage(ps, {8, 120.0}), InvalidArgument);
+}
+
+TEST(Simplify, GridKeepsOnePointPerCell) {
+  PointSet copy = grid(40, 0.1);
+  grid_simplify(copy, 0.2001);
+  EXPECT_EQ(copy.size(), 20u * 20u);
+  EXPECT_THROW(grid_simplify(copy, 0.0), InvalidArgument);
+}
+
+TEST(Simplify, RandomIsExactAndReproducible) {
+  PointSet a = grid(20, 1.0), b = grid(20, 1.0), c = grid(20, 1.0);
+  EXPECT_EQ(random_simplify(a, 25.0, 7), 100u);
+  random_simplify(b, 25.0, 7);
+  random_simplify(c, 25.0, 8);
+  EXPECT_EQ(a.size(), 300u);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_NE(a.points, c.points);
+}
+
+TEST(JetSmoothing, ReducesNoiseOnAPlane) {
+  PointSet ps = grid(40, 0.05, 0.01);
+  auto rms_z = [](const PointSet& s) {
+    double sum = 0;
+    for (const Vec3& p : s.points) sum += p[2] * p[2];
+    return std::sqrt(sum / s.size());
+  };
+  const double before = rms_z(ps);
+  jet_smooth(ps, {24});
+  EXPECT_LT(rms_z(ps), before / 2);
+  EXPECT_THROW(jet_smooth(ps, {3}), InvalidArgument);
+}
+
+TEST(Normals, SphereNormalsAreRadialAndOrientedOutward) {
+  for (NormalMethod method : {NormalMethod::Pca, NormalMethod::Jet}) {
+    PointSet ps = sphere_points(5000);
+    estimate_normals(ps, {method, 18});
+    EXPECT_EQ(orient_normals_mst(ps, {18, true}), 0u);
+    std::size_t outward = 0;
+    double worst = 1;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const double c = dot(ps.normals[i], (1.0 / norm(ps.points[i])) * ps.points[i]);
+      outward += c > 0;
+      worst = std::min(worst, std::abs(c));
+    }
+    EXPECT_EQ(outward, ps.size());
+    EXPECT_GT(worst, 0.95);
+  }
+}
+
+TEST(Normals, OrientationNeedsNormals) {
+  PointSet ps = sphere_points(100);
+  EXPECT_THROW(orient_normals_mst(ps), InvalidArgument);
+}
+
+TEST(Determinism, ResultsDoNotDependOnTheThreadCount) {
+  auto run = [](int threads) {
+    tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
+    PointSet ps = sphere_points(3000);
+    jet_smooth(ps, {24});
+    estimate_normals(ps, {NormalMethod::Jet, 18});
+    orient_normals_mst(ps, {18, true});
+    remove_outliers_sigma(ps, {24, 3.0});
+    return std::make_pair(ps, average_spacing(ps, 6));
+  };
+  const auto one = run(1), two = run(2);
+  EXPECT_EQ(one.first.points, two.first.points);
+  EXPECT_EQ(one.first.normals, two.first.normals);
+  EXPECT_EQ(one.second, two.second);
+}
+
+TEST(CheckPointSet, RejectsEmptyNanAndCoincidentSets) {
+  PointSet ps;
+  EXPECT_THROW(check_point_set(ps, 1, "test"), InvalidInput);
+  ps.points = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  EXPECT_THROW(check_point_set(ps, 1, "test"), InvalidInput);
+  ps.points = {{0, 0, 0}, {1, 0, 0}, {NAN, 0, 0}};
+  EXPECT_THROW(check_point_set(ps, 1, "test"), InvalidInput);
+}
