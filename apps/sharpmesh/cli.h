@@ -37,6 +37,8 @@ Command add_clean(CLI::App& app);
 Command add_sample(CLI::App& app);
 Command add_eval(CLI::App& app);
 Command add_reconstruct(CLI::App& app);
+Command add_features(CLI::App& app);
+Command add_eval_features(CLI::App& app);
 
 /// Progress on stderr: a live percentage on a terminal, one line per stage otherwise.
 class ProgressPrinter {

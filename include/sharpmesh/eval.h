@@ -67,3 +67,32 @@ DistanceReport compare_meshes(const SurfaceMesh& mesh, const SurfaceMesh& refere
 double surface_area(const SurfaceMesh& mesh);
 
 }  // namespace sharpmesh
+
+namespace sharpmesh {
+
+/// Feature-extraction benchmark (thesis 8.2): the reference's sharp edges
+/// are the ground truth. Recall = fraction of ground-truth length within
+/// `tolerance` of the extracted polylines; precision = fraction of extracted
+/// length within `tolerance` of the ground truth; corner recall = fraction
+/// of ground-truth corners (3 or more sharp edges) with an extracted
+/// junction of degree >= 3 within `tolerance`.
+struct FeatureEvalOptions {
+  double sharp_angle = 30.0;  ///< degrees from flat
+  double tolerance = 0.005;   ///< fraction of the reference's bounding-box diagonal
+  void check() const;
+};
+struct FeatureEvaluation {
+  double diagonal = 0, tolerance = 0;  ///< data units
+  double truth_length = 0, extracted_length = 0;
+  double recall = 0, precision = 0;
+  double truth_to_extracted_mean = 0, truth_to_extracted_max = 0;
+  double extracted_to_truth_mean = 0, extracted_to_truth_max = 0;
+  std::size_t truth_corners = 0, recalled_corners = 0;
+};
+/// Points where `min_degree` or more open polylines end (corners of a feature graph).
+std::vector<Vec3> polyline_corners(const std::vector<Polyline>& polylines, int min_degree = 3);
+
+FeatureEvaluation evaluate_features(const std::vector<Polyline>& extracted, const std::vector<Vec3>& extracted_corners,
+                                    const SurfaceMesh& reference, const FeatureEvalOptions& options = {});
+
+}  // namespace sharpmesh

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sharpmesh/features.h"
 #include "sharpmesh/types.h"
 
 namespace sharpmesh {
@@ -34,6 +35,12 @@ void write_mesh(const std::string& path, const SurfaceMesh& mesh, PlyFormat form
 
 /// Writes polylines in CGAL's text format.
 void write_polylines(const std::string& path, const std::vector<Polyline>& polylines);
+
+/// Writes classified points as PLY: position, class (0 smooth, 1 edge,
+/// 2 corner), edge direction dx/dy/dz, eigenvalue ratios l0_l1 and l1_l2, and a
+/// colour by class (grey, red, blue) so viewers show the result directly.
+void write_feature_points(const std::string& path, const std::vector<Vec3>& points, const std::vector<PointFeature>& features,
+                          PlyFormat format = PlyFormat::Binary);
 
 /// Writes a text file atomically (reports, JSON).
 void write_text_file(const std::string& path, const std::string& text);

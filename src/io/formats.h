@@ -17,6 +17,9 @@ PlyContents read_ply(const std::string& path);
 void write_ply_points(const std::string& path, const PointSet& points, PlyFormat format);
 void write_ply_mesh(const std::string& path, const SurfaceMesh& mesh, PlyFormat format);
 
+void write_ply_feature_points(const std::string& path, const std::vector<Vec3>& points, const std::vector<PointFeature>& features,
+                              PlyFormat format);
+
 PointSet read_xyz(const std::string& path);
 void write_xyz(const std::string& path, const PointSet& points);
 

@@ -84,6 +84,13 @@ void write_polylines(const std::string& path, const std::vector<Polyline>& polyl
   io::write_polylines_text(path, polylines);
 }
 
+void write_feature_points(const std::string& path, const std::vector<Vec3>& points, const std::vector<PointFeature>& features,
+                          PlyFormat format) {
+  if (io::extension(path) != "ply") throw InvalidArgument(path + ": classified points are written as .ply");
+  if (features.size() != points.size()) throw InvalidArgument("one classification per point is needed");
+  io::write_ply_feature_points(path, points, features, format);
+}
+
 void write_text_file(const std::string& path, const std::string& text) {
   io::AtomicFile file(path);
   file.write(text);

@@ -393,4 +393,40 @@ void write_ply_mesh(const std::string& path, const SurfaceMesh& mesh, PlyFormat 
   file.commit();
 }
 
+void write_ply_feature_points(const std::string& path, const std::vector<Vec3>& points, const std::vector<PointFeature>& features,
+                              PlyFormat format) {
+  AtomicFile file(path);
+  std::string h = "ply\nformat ";
+  h += format == PlyFormat::Binary ? "binary_little_endian 1.0\n" : "ascii 1.0\n";
+  h += "comment sharpmesh feature classification: class 0 smooth, 1 edge, 2 corner\n";
+  h += "element vertex " + std::to_string(points.size()) + "\n";
+  h += "property double x\nproperty double y\nproperty double z\nproperty uchar class\n"
+       "property float dx\nproperty float dy\nproperty float dz\nproperty float l0_l1\nproperty float l1_l2\n"
+       "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  file.write(h);
+  static const unsigned char colors[3][3] = {{190, 190, 190}, {220, 30, 30}, {30, 60, 220}};
+  std::string buffer;
+  char line[320];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const PointFeature& f = features[i];
+    const auto c = static_cast<int>(f.type);
+    const float values[5] = {float(f.direction[0]), float(f.direction[1]), float(f.direction[2]),
+                             float(std::min(f.ratio01, 3e38)), float(std::min(f.ratio12, 3e38))};
+    if (format == PlyFormat::Binary) {
+      buffer.append(reinterpret_cast<const char*>(points[i].data()), 24);
+      buffer += static_cast<char>(c);
+      buffer.append(reinterpret_cast<const char*>(values), 20);
+      buffer.append(reinterpret_cast<const char*>(colors[c]), 3);
+    } else {
+      const int len = std::snprintf(line, sizeof line, "%.17g %.17g %.17g %d %.7g %.7g %.7g %.7g %.7g %d %d %d\n", points[i][0],
+                                    points[i][1], points[i][2], c, values[0], values[1], values[2], values[3], values[4],
+                                    colors[c][0], colors[c][1], colors[c][2]);
+      buffer.append(line, len);
+    }
+    if (buffer.size() > (1 << 20)) { file.write(buffer); buffer.clear(); }
+  }
+  file.write(buffer);
+  file.commit();
+}
+
 }  // namespace sharpmesh::io

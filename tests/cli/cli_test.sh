@@ -112,6 +112,24 @@ PY
     expect_error 2 "not writable" "ro/out.ply" $bin clean c.xyz -o ro/out.ply ;;
   bad-option) expect_error 2 "banana" "" $bin reconstruct --delta banana ;;
   laz-refused) printf 'LASF' > c.laz; expect_error 1 "LAZ" "out.ply" $bin clean c.laz -o out.ply ;;
+  features)
+    $bin sample "$data/meshes/cube.off" -n 20000 --seed 3 -o s.ply -q || fail "sample failed"
+    $bin features s.ply -o p.polylines.txt --edge-points e.ply --report r.json -q || fail "features failed"
+    [[ -s p.polylines.txt ]] || fail "no polyline written"
+    head -c 300 e.ply | grep -q "property uchar class" || fail "edge points lack their class"
+    python3 - <<'PY' || fail "bad features report"
+import json
+r = json.load(open("r.json"))
+assert [s["name"] for s in r["stages"]] == ["detection", "clustering", "polylines"], r["stages"]
+assert r["counts"]["edge_points"] > 0 and r["counts"]["points"] == 20000, r["counts"]
+PY
+    $bin eval-features p.polylines.txt --reference "$data/meshes/cube.off" --json f.json -q || fail "eval-features failed"
+    python3 -c "import json; e=json.load(open('f.json'))['evaluation']; assert 0 <= e['recall'] <= 1 and e['truth_corners'] == 8, e" || fail "bad eval-features" ;;
+  features-bad-input)
+    printf '0 0 0\n1 0 0\n0 1 0\n' > t.xyz
+    expect_error 1 "at least" "p.txt" $bin features t.xyz -o p.txt
+    cloud 500 c.xyz
+    expect_error 2 "offset radius" "p.txt" $bin features c.xyz -o p.txt --offset-radius -1 ;;
   *) fail "unknown case" ;;
 esac
 echo "PASS [$case_name]"

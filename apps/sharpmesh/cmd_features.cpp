@@ -1,0 +1,150 @@
+// sharpmesh features CLOUD -o OUT.polylines.txt: sharp-edge polylines and
+// junctions (thesis 7.2), timed per stage as in Table 7.1.
+#include <cstdio>
+
+#include "cli.h"
+#include "sharpmesh/eval.h"
+#include "sharpmesh/features.h"
+#include "sharpmesh/io.h"
+
+namespace sharpmesh::cli {
+
+const char* junction_name(JunctionType t) {
+  return t == JunctionType::Dart ? "dart" : t == JunctionType::Cusp ? "cusp" : "corner";
+}
+
+void add_feature_options(CLI::App& sub, FeatureOptions& f) {
+  const char* g = "Feature detection (thesis 7.2)";
+  sub.add_option("--offset-radius", f.offset_radius, "Voronoi offset radius R, fraction of the bounding-sphere radius (7.2.1)")
+      ->capture_default_str()->group(g);
+  sub.add_option("--convolution-radius", f.convolution_radius,
+                 "Convolution radius r, fraction of R; 0 = automatic: R/10, widened to 4 estimated noise deviations")
+      ->capture_default_str()->group(g);
+  sub.add_option("--t1", f.t1, "Smooth if lambda0/lambda1 > t1 (Algorithm 1)")->capture_default_str()->group(g);
+  sub.add_option("--t2", f.t2, "Edge if lambda1/lambda2 >= t2, else corner (Algorithm 1)")->capture_default_str()->group(g);
+  sub.add_option("--cluster-k", f.cluster_k, "Neighbours of rho_k for close pairs (Algorithm 2)")->capture_default_str()->group(g);
+  sub.add_option("--cluster-angle", f.cluster_angle, "theta: max angle between edge directions and a close pair, degrees")
+      ->capture_default_str()->group(g);
+  sub.add_option("--successor-k", f.successor_k, "r_p = rho_k(p) of the successor procedure (7.2.3)")->capture_default_str()->group(g);
+  sub.add_option("--junction-factor", f.junction_factor, "r_junc = factor x spacing of a polyline's last four points (7.2.3)")
+      ->capture_default_str()->group(g);
+}
+
+nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, double diagonal) {
+  nlohmann::json junctions = nlohmann::json::array();
+  std::size_t counts[3] = {0, 0, 0};
+  for (const Junction& j : r.graph.junctions) {
+    junctions.push_back({{"position", j.position}, {"type", junction_name(j.type)}, {"degree", j.degree}});
+    ++counts[static_cast<int>(j.type)];
+  }
+  std::size_t closed = 0;
+  for (const Polyline& p : r.graph.polylines) closed += p.size() > 2 && p.front() == p.back();
+  return {{"parameters",
+           {{"offset_radius", o.offset_radius}, {"convolution_radius", o.convolution_radius}, {"t1", o.t1}, {"t2", o.t2},
+            {"cluster_k", o.cluster_k}, {"cluster_angle", o.cluster_angle}, {"min_cluster_size", o.min_cluster_size},
+            {"successor_k", o.successor_k}, {"junction_factor", o.junction_factor}}},
+          {"derived",
+           {{"R", length_json(r.offset_radius, diagonal)}, {"r", length_json(r.convolution_radius, diagonal)},
+            {"noise_estimate", length_json(r.noise_estimate, diagonal)}}},
+          {"counts",
+           {{"points", r.points.size()}, {"edge_points", r.edge_points}, {"corner_points", r.corner_points},
+            {"clusters", r.clusters}, {"pruned_clusters", r.pruned_clusters}, {"polylines", r.graph.polylines.size()},
+            {"closed_polylines", closed}, {"darts", counts[0]}, {"cusps", counts[1]}, {"corners", counts[2]}}},
+          {"junctions", junctions},
+          {"stages", stages_json(r.stages)}};
+}
+
+Command add_features(CLI::App& app) {
+  struct Options {
+    std::string input, output, edge_points;
+    FeatureOptions features;
+    bool ascii = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto common = std::make_shared<CommonOptions>();
+  CLI::App* sub = app.add_subcommand("features", "Sharp-edge polylines and junctions of a point cloud (thesis 7.2)");
+  sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las)")->required();
+  sub->add_option("-o,--output", o->output, "Output polylines (CGAL text format: n x1 y1 z1 ... per line)")->required();
+  sub->add_option("--edge-points", o->edge_points, "Write every point with its class, edge direction and eigenvalue ratios (.ply)");
+  sub->add_flag("--ascii", o->ascii, "Write --edge-points as ASCII PLY");
+  add_feature_options(*sub, o->features);
+  common->add_to(*sub);
+  auto run = [o, common] {
+    check_output(o->output, "polylines");
+    check_output(o->edge_points, "points");
+    check_output(common->report, "report");
+    o->features.check();
+    const auto start = std::chrono::steady_clock::now();
+    const PointSet points = read_point_set(o->input);
+    ProgressPrinter printer(common->quiet);
+    const FeatureResult result = extract_features(points, o->features, printer.callback());
+    write_polylines(o->output, result.graph.polylines);
+    if (!o->edge_points.empty()) write_feature_points(o->edge_points, points.points, result.points, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
+    const double diagonal = bounding_box(points.points).diagonal();
+    nlohmann::json report = feature_report(result, o->features, diagonal);
+    if (!common->quiet) {
+      const auto& c = report["counts"];
+      char line[256];
+      std::snprintf(line, sizeof line, "features: %zu edge points, %zu corner points -> %zu clusters -> %zu polylines, %zu corners, %zu cusps, %zu darts",
+                    c["edge_points"].get<std::size_t>(), c["corner_points"].get<std::size_t>(), c["clusters"].get<std::size_t>(),
+                    c["polylines"].get<std::size_t>(), c["corners"].get<std::size_t>(), c["cusps"].get<std::size_t>(),
+                    c["darts"].get<std::size_t>());
+      printer.message(line);
+      for (const StageTiming& s : result.stages) {
+        std::snprintf(line, sizeof line, "  %-12s %8.2f s  %8.1f MiB peak", s.name.c_str(), s.seconds, s.peak_rss_bytes / 1048576.0);
+        printer.message(line);
+      }
+    }
+    report["command"] = "features";
+    report["input"] = o->input;
+    report["output"] = o->output;
+    report["seconds"] = seconds_since(start);
+    write_report(common->report, report);
+  };
+  return {sub, run, common};
+}
+
+Command add_eval_features(CLI::App& app) {
+  struct Options {
+    std::string input, reference;
+    FeatureEvalOptions eval;
+  };
+  auto o = std::make_shared<Options>();
+  auto common = std::make_shared<CommonOptions>();
+  CLI::App* sub = app.add_subcommand("eval-features", "Recall and precision of sharp-edge polylines against a reference mesh's sharp edges");
+  sub->add_option("POLYLINES", o->input, "Extracted polylines (CGAL text format)")->required();
+  sub->add_option("-r,--reference", o->reference, "Reference mesh: its sharp edges are the ground truth")->required();
+  sub->add_option("--sharp-angle", o->eval.sharp_angle, "Sharp-edge threshold of the reference, degrees from flat")->capture_default_str();
+  sub->add_option("--tolerance", o->eval.tolerance, "Distance under which an edge counts as found, fraction of the diagonal")->capture_default_str();
+  common->add_to(*sub, false);
+  sub->add_option("--json,--report", common->report, "Write the evaluation as JSON");
+  auto run = [o, common] {
+    check_output(common->report, "report");
+    const std::vector<Polyline> lines = read_polylines(o->input);
+    const SurfaceMesh reference = read_mesh(o->reference);
+    // Junctions of degree >= 3: the polyline ends shared by three or more polylines.
+    const std::vector<Vec3> corners = polyline_corners(lines);
+    const FeatureEvaluation e = evaluate_features(lines, corners, reference, o->eval);
+    if (!common->quiet) {
+      std::printf("recall            %.4f   (ground truth length %.6g within %.3g%% of the diagonal)\n", e.recall, e.truth_length, 100 * o->eval.tolerance);
+      std::printf("precision         %.4f   (extracted length %.6g)\n", e.precision, e.extracted_length);
+      std::printf("truth->extracted  mean %.4g%%  max %.4g%% of the diagonal\n", 100 * e.truth_to_extracted_mean / e.diagonal, 100 * e.truth_to_extracted_max / e.diagonal);
+      std::printf("extracted->truth  mean %.4g%%  max %.4g%% of the diagonal\n", 100 * e.extracted_to_truth_mean / e.diagonal, 100 * e.extracted_to_truth_max / e.diagonal);
+      std::printf("corners           %zu of %zu recalled\n", e.recalled_corners, e.truth_corners);
+    }
+    auto frac = [&](double v) { return v / e.diagonal; };
+    write_report(common->report,
+                 {{"command", "eval-features"}, {"input", o->input}, {"reference", o->reference},
+                  {"parameters", {{"sharp_angle", o->eval.sharp_angle}, {"tolerance", o->eval.tolerance}}},
+                  {"evaluation",
+                   {{"recall", e.recall}, {"precision", e.precision}, {"truth_length", e.truth_length},
+                    {"extracted_length", e.extracted_length}, {"diagonal", e.diagonal},
+                    {"truth_to_extracted_mean", frac(e.truth_to_extracted_mean)}, {"truth_to_extracted_max", frac(e.truth_to_extracted_max)},
+                    {"extracted_to_truth_mean", frac(e.extracted_to_truth_mean)}, {"extracted_to_truth_max", frac(e.extracted_to_truth_max)},
+                    {"truth_corners", e.truth_corners}, {"recalled_corners", e.recalled_corners},
+                    {"distances_unit", "fraction of the reference's bounding-box diagonal"}}}});
+  };
+  return {sub, run, common};
+}
+
+}  // namespace sharpmesh::cli

@@ -1,0 +1,89 @@
+// Sharp feature extraction from point clouds (thesis 7.2, 7.4): Voronoi
+// covariance measure by the clamped approximation, classification
+// (Algorithm 1), clustering (Algorithm 2), polyline and junction recovery.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sharpmesh/progress.h"
+#include "sharpmesh/timing.h"
+#include "sharpmesh/types.h"
+
+namespace sharpmesh {
+
+using Matrix3 = std::array<double, 9>;  ///< row-major symmetric 3x3
+
+/// Parameters of Section 7.2 with the thesis's defaults.
+struct FeatureOptions {
+  /// Offset radius R as a fraction of the bounding-sphere radius (7.2.1: 0.1).
+  double offset_radius = 0.1;
+  /// Convolution radius r as a fraction of R (7.2.1: 0.1). 0 = automatic:
+  /// r = R/10, enlarged where the estimated noise level needs it.
+  double convolution_radius = 0.0;
+  double t1 = 50.0;  ///< smooth if lambda0/lambda1 > t1 (Algorithm 1; fandisk value)
+  double t2 = 6.0;   ///< edge if lambda1/lambda2 >= t2, else corner
+  int cluster_k = 20;         ///< rho_k of close pairs (7.2.2)
+  double cluster_angle = 15;  ///< theta, degrees (7.2.2)
+  std::size_t min_cluster_size = 7;  ///< clusters of 6 points or fewer are pruned (7.2.2)
+  int successor_k = 5;        ///< r_p = rho_5(p) (7.2.3)
+  double junction_factor = 5; ///< r_junc = 5 x spacing of a polyline's last four points (7.2.3)
+  void check() const;
+};
+
+enum class PointClass : std::uint8_t { Smooth = 0, Edge = 1, Corner = 2 };
+
+/// Per-point result of Algorithm 1.
+struct PointFeature {
+  PointClass type = PointClass::Smooth;
+  Vec3 direction{0, 0, 0};  ///< e2: eigenvector of the smallest eigenvalue (edge direction)
+  Vec3 normal{0, 0, 0};     ///< e0: eigenvector of the largest eigenvalue (unoriented normal)
+  double ratio01 = 0;       ///< lambda0 / lambda1
+  double ratio12 = 0;       ///< lambda1 / lambda2
+};
+
+enum class JunctionType : std::uint8_t { Dart = 0, Cusp = 1, Corner = 2 };
+
+struct Junction {
+  Vec3 position{0, 0, 0};
+  JunctionType type = JunctionType::Dart;
+  int degree = 0;  ///< number of polyline ends meeting here
+};
+
+/// The sharp-feature graph: polylines that run between junctions or darts
+/// (closed loops have front() == back()).
+struct FeatureGraph {
+  std::vector<Polyline> polylines;
+  std::vector<Junction> junctions;
+};
+
+struct FeatureResult {
+  FeatureGraph graph;
+  std::vector<PointFeature> points;  ///< one per input point
+  double offset_radius = 0;          ///< R, data units
+  double convolution_radius = 0;     ///< r, data units
+  double noise_estimate = 0;         ///< estimated noise level, data units
+  double average_spacing = 0;        ///< mean distance to the 6 nearest neighbours
+  std::size_t edge_points = 0, corner_points = 0;
+  std::size_t clusters = 0, pruned_clusters = 0;
+  std::vector<StageTiming> stages;   ///< detection, clustering, polylines and junctions (Table 7.1)
+};
+
+/// Voronoi covariance measure of each point by the clamped approximation
+/// (7.4): Voronoi vertices beyond R are projected onto the sphere B(p, R),
+/// the cell is cut into tetrahedra from p and their covariances summed.
+std::vector<Matrix3> voronoi_covariance(const std::vector<Vec3>& points, double offset_radius,
+                                        const Progress& progress = {});
+
+/// Convolved VCM (7.2.1): sum of the VCMs of the points within r of each point.
+std::vector<Matrix3> convolve_covariance(const std::vector<Vec3>& points, const std::vector<Matrix3>& vcm,
+                                         double convolution_radius, const Progress& progress = {});
+
+/// Algorithm 1 on convolved covariances.
+std::vector<PointFeature> classify_points(const std::vector<Matrix3>& cvcm, double t1, double t2);
+
+/// The whole of Section 7.2.
+FeatureResult extract_features(const PointSet& points, const FeatureOptions& options = {},
+                               const Progress& progress = {});
+
+}  // namespace sharpmesh

@@ -1,0 +1,49 @@
+// Internal steps of feature recovery (thesis 7.2.2, 7.2.3), CGAL-free.
+#pragma once
+
+#include <vector>
+
+#include "pointset/knn.h"
+#include "sharpmesh/features.h"
+
+namespace sharpmesh::detail {
+
+/// A cluster of edge points (indices into the edge-point arrays) and the
+/// extremity points found beyond its ends.
+struct EdgeCluster {
+  std::vector<std::uint32_t> members;
+  std::vector<std::uint32_t> extremities;
+};
+
+/// RMS distance from p to its k nearest other points of `index`.
+double rho_k(const KnnIndex& index, const Vec3& p, int k, std::vector<std::uint32_t>& ids, std::vector<double>& d2);
+
+/// Moves each edge point onto the line through the centroid of its k nearest
+/// edge points along its edge direction (twice): the band of edge points
+/// around a sharp edge, several samples wide, collapses onto its axis.
+void thin_edge_band(std::vector<Vec3>& points, const std::vector<Vec3>& directions, int k);
+
+/// Algorithm 2.
+std::vector<EdgeCluster> cluster_edge_points(const std::vector<Vec3>& points, const std::vector<Vec3>& directions, int k,
+                                             double theta_deg, std::size_t min_size, std::size_t& pruned);
+
+/// A polyline with the edge direction at each vertex.
+struct TracedPolyline {
+  std::vector<Vec3> vertices;
+  std::vector<Vec3> directions;
+  bool closed = false;
+  double length() const;
+};
+
+/// Successor procedure from a seed in both directions, PCA smoothing, and
+/// lengthening with the extremity points (7.2.3). r_p = rho_k(p), at least
+/// `min_radius` (thinned clusters can be denser than the cloud's spacing).
+TracedPolyline trace_polyline(const EdgeCluster& cluster, const std::vector<Vec3>& points, const std::vector<Vec3>& directions,
+                              int successor_k, double min_radius);
+
+/// Junction recovery (7.2.3): merges nearby endpoints into darts, cusps and
+/// corners, closes loops, joins collinear pieces, splits polylines that pass
+/// through a junction.
+FeatureGraph connect_polylines(std::vector<TracedPolyline> polylines, double junction_factor);
+
+}  // namespace sharpmesh::detail

@@ -1,0 +1,210 @@
+// Junction recovery (thesis 7.2.3, Fig. 7.7): endpoints closer than r_junc
+// (5 x the spacing of a polyline's last four points) meet at the barycentre
+// of the closest points of their end lines. Beyond the thesis, so that every
+// polyline runs between two junctions or darts (what the protecting balls of
+// 7.3.2 need): two ends of one long polyline close a loop; two collinear ends
+// are joined into one polyline instead of a false cusp; a polyline passing
+// through a junction is split there.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "eval/mesh_graph.h"
+#include "features/feature_graph_builder.h"
+
+namespace sharpmesh::detail {
+namespace {
+
+struct End {
+  std::size_t polyline;
+  bool back;        ///< the last vertex (else the first)
+  Vec3 position;
+  Vec3 outward;     ///< edge direction pointing out of the polyline
+  double r_junc;
+};
+
+End make_end(const TracedPolyline& line, std::size_t index, bool back, double factor) {
+  const std::size_t n = line.vertices.size();
+  // Average spacing of the ending four points (three segments).
+  double spacing = 0;
+  int segments = 0;
+  for (int s = 0; s < 3 && s + 1 < static_cast<int>(n); ++s, ++segments) {
+    const std::size_t a = back ? n - 1 - s : s, b = back ? n - 2 - s : s + 1;
+    spacing += distance(line.vertices[a], line.vertices[b]);
+  }
+  spacing = segments ? spacing / segments : 0;
+  Vec3 outward = back ? line.directions.back() : -1.0 * line.directions.front();
+  return {index, back, back ? line.vertices.back() : line.vertices.front(), outward, factor * spacing};
+}
+
+// Closest points between lines (a + s u) and (b + t v); false when parallel.
+bool closest_points(const Vec3& a, const Vec3& u, const Vec3& b, const Vec3& v, Vec3& qa, Vec3& qb) {
+  const Vec3 w = a - b;
+  const double uu = dot(u, u), uv = dot(u, v), vv = dot(v, v), uw = dot(u, w), vw = dot(v, w);
+  const double det = uu * vv - uv * uv;
+  if (!(det > 1e-12 * uu * vv)) return false;
+  const double s = (uv * vw - vv * uw) / det, t = (uu * vw - uv * uw) / det;
+  qa = a + s * u;
+  qb = b + t * v;
+  return true;
+}
+
+Vec3 junction_position(const std::vector<End>& ends, double radius) {
+  Vec3 center{0, 0, 0};
+  for (const End& e : ends) center = center + e.position;
+  center = (1.0 / ends.size()) * center;
+  Vec3 sum{0, 0, 0};
+  int count = 0;
+  for (std::size_t i = 0; i < ends.size(); ++i)
+    for (std::size_t j = i + 1; j < ends.size(); ++j) {
+      Vec3 qi, qj;
+      if (!closest_points(ends[i].position, ends[i].outward, ends[j].position, ends[j].outward, qi, qj)) qi = qj = center;
+      for (const Vec3& q : {qi, qj}) {
+        sum = sum + (distance(q, center) <= radius ? q : center);  // points outside the ball count as the centre
+        ++count;
+      }
+    }
+  return count ? (1.0 / count) * sum : center;
+}
+
+void set_end(TracedPolyline& line, bool back, const Vec3& p) {
+  if (back) line.vertices.back() = p;
+  else line.vertices.front() = p;
+}
+
+}  // namespace
+
+FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor) {
+  const double cos_collinear = std::cos(150.0 * M_PI / 180.0);
+  std::vector<End> ends;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].vertices.size() < 2) continue;
+    ends.push_back(make_end(lines[i], i, false, factor));
+    ends.push_back(make_end(lines[i], i, true, factor));
+  }
+  // Group ends within r_junc of each other; the two ends of one polyline are
+  // only grouped when the polyline is long enough to be a loop.
+  DisjointSets groups(ends.size());
+  for (std::size_t a = 0; a < ends.size(); ++a)
+    for (std::size_t b = a + 1; b < ends.size(); ++b) {
+      const double r = std::max(ends[a].r_junc, ends[b].r_junc);
+      if (distance(ends[a].position, ends[b].position) >= r) continue;
+      if (ends[a].polyline == ends[b].polyline) {
+        // A loop closes only when the polyline is long and its ends face each other.
+        if (lines[ends[a].polyline].length() < 10 * r || dot(ends[a].outward, ends[b].outward) > -0.5) continue;
+      }
+      groups.unite(a, b);
+    }
+  std::map<std::size_t, std::vector<std::size_t>> members;
+  for (std::size_t a = 0; a < ends.size(); ++a) members[groups.find(a)].push_back(a);
+
+  FeatureGraph graph;
+  struct Node { Vec3 position; double radius; std::vector<std::size_t> ends; };
+  std::vector<Node> nodes;
+  for (auto& [root, list] : members) {
+    std::vector<End> group;
+    double radius = 0;
+    for (std::size_t a : list) {
+      group.push_back(ends[a]);
+      radius = std::max(radius, ends[a].r_junc);
+    }
+    if (group.size() == 2 && group[0].polyline == group[1].polyline) {  // a closed loop
+      TracedPolyline& line = lines[group[0].polyline];
+      const Vec3 mid = 0.5 * (group[0].position + group[1].position);
+      line.vertices.front() = mid;
+      line.vertices.back() = mid;
+      line.closed = true;
+      continue;
+    }
+    const Vec3 p = group.size() == 1 ? group[0].position : junction_position(group, radius);
+    for (const End& e : group) set_end(lines[e.polyline], e.back, p);
+    nodes.push_back({p, radius, list});
+  }
+
+  // Join the two pieces meeting at a node of degree 2 when they are collinear
+  // (one sharp edge detected in two clusters): no false cusp.
+  std::vector<bool> dead(lines.size(), false);
+  for (Node& node : nodes) {
+    if (node.ends.size() != 2) continue;
+    const End &a = ends[node.ends[0]], &b = ends[node.ends[1]];
+    if (a.polyline == b.polyline || dot(a.outward, b.outward) > cos_collinear) continue;
+    TracedPolyline& la = lines[a.polyline];
+    TracedPolyline lb = lines[b.polyline];
+    // Which end meets the node is read from the positions: earlier joins may have reversed a piece.
+    const bool a_back = distance(la.vertices.back(), node.position) <= distance(la.vertices.front(), node.position);
+    const bool b_back = distance(lb.vertices.back(), node.position) <= distance(lb.vertices.front(), node.position);
+    if (!a_back) {
+      std::reverse(la.vertices.begin(), la.vertices.end());
+      std::reverse(la.directions.begin(), la.directions.end());
+    }
+    if (b_back) {
+      std::reverse(lb.vertices.begin(), lb.vertices.end());
+      std::reverse(lb.directions.begin(), lb.directions.end());
+    }
+    la.vertices.insert(la.vertices.end(), lb.vertices.begin() + 1, lb.vertices.end());
+    la.directions.insert(la.directions.end(), lb.directions.begin() + 1, lb.directions.end());
+    const std::size_t removed = b.polyline, into = a.polyline;
+    dead[removed] = true;
+    node.ends.clear();  // no longer a junction
+    for (End& e : ends)  // ends of the removed piece now belong to the merged polyline
+      if (e.polyline == removed) e.polyline = into;
+  }
+
+  std::vector<TracedPolyline> kept;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (!dead[i] && lines[i].vertices.size() >= 2) kept.push_back(std::move(lines[i]));
+
+  // Split polylines that pass through a junction or dart (T-junctions): an
+  // interior vertex within the node's radius becomes the node.
+  for (Node& node : nodes) {
+    if (node.ends.empty()) continue;
+    for (std::size_t li = 0; li < kept.size(); ++li) {
+      TracedPolyline& line = kept[li];
+      std::size_t best = 0;
+      double best_d = node.radius;
+      for (std::size_t v = 1; v + 1 < line.vertices.size(); ++v) {
+        const double d = distance(line.vertices[v], node.position);
+        if (d < best_d) {
+          best_d = d;
+          best = v;
+        }
+      }
+      if (best == 0 || best == line.vertices.size() - 1) continue;
+      // Do not split a polyline at a vertex right next to its own end at this node.
+      if (distance(line.vertices.front(), node.position) < 1e-12 || distance(line.vertices.back(), node.position) < 1e-12) continue;
+      TracedPolyline tail;
+      tail.vertices.assign(line.vertices.begin() + best, line.vertices.end());
+      tail.directions.assign(line.directions.begin() + best, line.directions.end());
+      line.vertices.resize(best + 1);
+      line.directions.resize(best + 1);
+      line.vertices.back() = node.position;
+      tail.vertices.front() = node.position;
+      if (line.closed) {  // a split loop becomes one open polyline from the node round to the node
+        tail.vertices.insert(tail.vertices.end(), line.vertices.begin() + 1, line.vertices.end());
+        tail.directions.insert(tail.directions.end(), line.directions.begin() + 1, line.directions.end());
+        tail.closed = false;
+        line = std::move(tail);
+        node.ends.push_back(SIZE_MAX);
+        node.ends.push_back(SIZE_MAX);
+      } else {
+        kept.push_back(std::move(tail));
+        node.ends.push_back(SIZE_MAX);
+        node.ends.push_back(SIZE_MAX);
+      }
+    }
+  }
+
+  for (const TracedPolyline& line : kept)
+    if (line.length() > 0) graph.polylines.push_back(line.vertices);  // splits and closings can leave empty pieces
+  for (const Node& node : nodes) {
+    if (node.ends.empty()) continue;
+    Junction j;
+    j.position = node.position;
+    j.degree = static_cast<int>(node.ends.size());
+    j.type = j.degree == 1 ? JunctionType::Dart : j.degree == 2 ? JunctionType::Cusp : JunctionType::Corner;
+    graph.junctions.push_back(j);
+  }
+  return graph;
+}
+
+}  // namespace sharpmesh::detail

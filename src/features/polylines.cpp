@@ -1,0 +1,180 @@
+// Polyline recovery from a cluster (thesis 7.2.3): successor procedure,
+// PCA smoothing of vertices and directions, lengthening with extremities.
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+#include "features/feature_graph_builder.h"
+
+namespace sharpmesh::detail {
+
+double TracedPolyline::length() const {
+  double total = 0;
+  for (std::size_t i = 0; i + 1 < vertices.size(); ++i) total += distance(vertices[i], vertices[i + 1]);
+  return total;
+}
+
+namespace {
+
+Vec3 unit(const Vec3& v) {
+  const double n = norm(v);
+  return n > 0 ? (1.0 / n) * v : Vec3{0, 0, 0};
+}
+
+// Principal axis and centroid of a set of points.
+std::pair<Vec3, Vec3> principal_line(const std::vector<Vec3>& pts) {
+  Vec3 c{0, 0, 0};
+  for (const Vec3& p : pts) c = c + p;
+  c = (1.0 / pts.size()) * c;
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  for (const Vec3& p : pts) {
+    const Eigen::Vector3d d(p[0] - c[0], p[1] - c[1], p[2] - c[2]);
+    m += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(m);
+  const Eigen::Vector3d a = solver.eigenvectors().col(2);
+  return {c, Vec3{a(0), a(1), a(2)}};
+}
+
+}  // namespace
+
+TracedPolyline trace_polyline(const EdgeCluster& cluster, const std::vector<Vec3>& all_points,
+                              const std::vector<Vec3>& all_directions, int successor_k, double min_radius) {
+  std::vector<Vec3> pts, dirs;
+  for (std::uint32_t m : cluster.members) {
+    pts.push_back(all_points[m]);
+    dirs.push_back(unit(all_directions[m]));
+  }
+  const std::size_t n = pts.size();
+  const KnnIndex index(pts);
+  std::vector<std::uint32_t> ids;
+  std::vector<double> d2;
+  const int k = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(successor_k), n - 1));
+  std::vector<double> radius(n);
+  for (std::size_t i = 0; i < n; ++i) radius[i] = std::max(min_radius, rho_k(index, pts[i], k, ids, d2));
+
+  // Successor walk from the seed (the first member: deterministic), in both directions.
+  std::vector<bool> visited(n, false);
+  const std::uint32_t seed = 0;
+  visited[seed] = true;
+  auto walk = [&](Vec3 heading) {
+    std::vector<std::uint32_t> chain;
+    std::uint32_t current = seed;
+    while (true) {
+      index.within(pts[current], radius[current], ids);
+      std::uint32_t best = UINT32_MAX;
+      double best_t = 0;
+      for (std::uint32_t q : ids) {
+        if (visited[q]) continue;
+        const double t = dot(pts[q] - pts[current], heading);
+        if (t > 0 && (best == UINT32_MAX || t < best_t || (t == best_t && q < best))) {
+          best = q;
+          best_t = t;
+        }
+      }
+      if (best == UINT32_MAX) break;
+      // Points passed over on the way (projection behind the successor) are consumed too.
+      for (std::uint32_t q : ids)
+        if (!visited[q] && dot(pts[q] - pts[current], heading) <= best_t) visited[q] = true;
+      visited[best] = true;
+      chain.push_back(best);
+      Vec3 next = dirs[best];
+      if (dot(next, heading) < 0) next = -1.0 * next;
+      heading = next;
+      current = best;
+    }
+    return chain;
+  };
+  const std::vector<std::uint32_t> forward = walk(dirs[seed]);
+  const std::vector<std::uint32_t> backward = walk(-1.0 * dirs[seed]);
+  std::vector<std::uint32_t> order(backward.rbegin(), backward.rend());
+  order.push_back(seed);
+  order.insert(order.end(), forward.begin(), forward.end());
+
+  TracedPolyline line;
+  // PCA smoothing: each vertex moves onto the principal line of its cluster
+  // neighbourhood (radius 2 r_p), whose axis becomes its direction.
+  std::vector<Vec3> local;
+  for (std::uint32_t v : order) {
+    index.within(pts[v], 2 * radius[v], ids);
+    local.clear();
+    for (std::uint32_t q : ids) local.push_back(pts[q]);
+    Vec3 position = pts[v], direction = dirs[v];
+    if (local.size() >= 3) {
+      const auto [c, a] = principal_line(local);
+      position = c + dot(pts[v] - c, a) * a;
+      direction = a;
+    }
+    line.vertices.push_back(position);
+    line.directions.push_back(direction);
+  }
+  // Directions follow the polyline.
+  for (std::size_t i = 0; i < line.vertices.size(); ++i) {
+    const Vec3 along = i + 1 < line.vertices.size() ? line.vertices[i + 1] - line.vertices[i]
+                                                   : (i > 0 ? line.vertices[i] - line.vertices[i - 1] : line.directions[i]);
+    if (dot(line.directions[i], along) < 0) line.directions[i] = -1.0 * line.directions[i];
+  }
+
+  // Resample at a uniform step of min_radius: the thinned cluster is denser
+  // than the cloud, and r_junc is measured on the last vertices (7.2.3).
+  if (line.vertices.size() >= 2 && min_radius > 0) {
+    TracedPolyline even;
+    even.vertices.push_back(line.vertices.front());
+    even.directions.push_back(line.directions.front());
+    double carried = 0;
+    for (std::size_t i = 0; i + 1 < line.vertices.size(); ++i) {
+      const Vec3 a = line.vertices[i], b = line.vertices[i + 1];
+      const double length = distance(a, b);
+      double t = min_radius - carried;
+      while (t <= length) {
+        even.vertices.push_back(a + (t / length) * (b - a));
+        even.directions.push_back(line.directions[i]);
+        t += min_radius;
+      }
+      carried = length - (t - min_radius);
+    }
+    if (distance(even.vertices.back(), line.vertices.back()) > 0.25 * min_radius) {
+      even.vertices.push_back(line.vertices.back());
+      even.directions.push_back(line.directions.back());
+    } else {
+      even.vertices.back() = line.vertices.back();
+    }
+    line = std::move(even);
+  }
+
+  // Lengthening: at each end, the centroid of the projections of the
+  // extremity points within r_p that lie beyond the end.
+  if (!cluster.extremities.empty() && line.vertices.size() >= 2) {
+    auto extend = [&](bool at_back) {
+      const Vec3 end = at_back ? line.vertices.back() : line.vertices.front();
+      const Vec3 outward = at_back ? line.directions.back() : -1.0 * line.directions.front();
+      const std::uint32_t end_index = at_back ? order.back() : order.front();
+      double sum = 0;
+      int count = 0;
+      for (std::uint32_t e : cluster.extremities) {
+        if (distance(all_points[e], end) >= 2 * radius[end_index]) continue;
+        const double t = dot(all_points[e] - end, outward);
+        if (t > 0) {
+          sum += t;
+          ++count;
+        }
+      }
+      if (count == 0) return;
+      const Vec3 c = end + (sum / count) * outward;
+      if (at_back) {
+        line.vertices.push_back(c);
+        line.directions.push_back(line.directions.back());
+      } else {
+        line.vertices.insert(line.vertices.begin(), c);
+        line.directions.insert(line.directions.begin(), line.directions.front());
+      }
+    };
+    extend(true);
+    extend(false);
+  }
+  return line;
+}
+
+}  // namespace sharpmesh::detail

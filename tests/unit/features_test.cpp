@@ -1,0 +1,123 @@
+// Feature detection (thesis 7.2) on analytic fixtures: what holds today.
+// The polyline and junction targets of issue 3 (cube: 12 polylines, 8
+// corners) are not met yet and are not asserted here.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "fixtures.h"
+#include "sharpmesh/errors.h"
+#include "sharpmesh/eval.h"
+#include "sharpmesh/features.h"
+
+using namespace sharpmesh;
+
+namespace {
+
+PointSet sample(const SurfaceMesh& mesh, std::size_t n) {
+  SampleOptions options;
+  options.count = n;
+  options.seed = 4;
+  return sample_mesh(mesh, options);
+}
+
+// Distance from p to the nearest edge of the cube [-1, 1]^3 (p on its surface).
+double distance_to_cube_edge(const Vec3& p) {
+  double gaps[3] = {1 - std::abs(p[0]), 1 - std::abs(p[1]), 1 - std::abs(p[2])};
+  std::sort(gaps, gaps + 3);
+  return std::hypot(gaps[0], gaps[1]);
+}
+
+}  // namespace
+
+TEST(VoronoiCovariance, PlaneSamplesHaveThePlaneNormalAsMainAxis) {
+  PointSet grid;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) grid.points.push_back({i * 0.05 + 0.001 * (j % 3), j * 0.05, 0.0});
+  const std::vector<Matrix3> vcm = voronoi_covariance(grid.points, 0.3);
+  const std::vector<PointFeature> f = classify_points(vcm, 50, 6);
+  const std::size_t centre = 20 * 40 + 20;
+  EXPECT_NEAR(std::abs(f[centre].normal[2]), 1.0, 1e-6);
+  EXPECT_EQ(f[centre].type, PointClass::Smooth);
+  EXPECT_THROW(voronoi_covariance(grid.points, 0.0), InvalidArgument);
+}
+
+TEST(FeatureDetection, SphereHasNoFeature) {
+  const FeatureResult r = extract_features(sample(test::sphere_mesh(5), 50000));
+  EXPECT_LT(r.edge_points + r.corner_points, 500u);  // < 1% of the points
+  EXPECT_TRUE(r.graph.polylines.empty());
+}
+
+TEST(FeatureDetection, CubeEdgePointsLieAlongTheTwelveEdges) {
+  const PointSet points = sample(test::cube_mesh(1.0), 100000);
+  const FeatureResult r = extract_features(points);
+  ASSERT_GT(r.edge_points, 1000u);
+  std::size_t edge_near = 0, far_points = 0, far_smooth = 0;
+  double direction_error = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double d = distance_to_cube_edge(points.points[i]);
+    if (r.points[i].type == PointClass::Edge) {
+      edge_near += d < 2 * r.convolution_radius;
+      // The edge direction is an axis: one coordinate of e2 is close to +-1.
+      const Vec3& e = r.points[i].direction;
+      direction_error += 1 - std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2])});
+    }
+    if (d > 4 * r.convolution_radius) {
+      ++far_points;
+      far_smooth += r.points[i].type == PointClass::Smooth;
+    }
+  }
+  EXPECT_GT(edge_near, 0.95 * r.edge_points);
+  EXPECT_GT(far_smooth, 0.99 * far_points);
+  EXPECT_LT(direction_error / r.edge_points, 0.02);
+}
+
+TEST(FeatureDetection, DoesNotDependOnTheThreadCount) {
+  const PointSet points = sample(test::cube_mesh(1.0), 20000);
+  auto run = [&](int threads) {
+    tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
+    return extract_features(points);
+  };
+  const FeatureResult one = run(1), two = run(2);
+  ASSERT_EQ(one.points.size(), two.points.size());
+  for (std::size_t i = 0; i < one.points.size(); ++i) {
+    EXPECT_EQ(one.points[i].type, two.points[i].type);
+    EXPECT_EQ(one.points[i].ratio01, two.points[i].ratio01);
+  }
+  EXPECT_EQ(one.graph.polylines, two.graph.polylines);
+}
+
+TEST(FeatureDetection, RejectsBadParameters) {
+  const PointSet points = sample(test::cube_mesh(1.0), 1000);
+  FeatureOptions options;
+  options.offset_radius = 0;
+  EXPECT_THROW(extract_features(points, options), InvalidArgument);
+  options = {};
+  options.cluster_angle = 120;
+  EXPECT_THROW(extract_features(points, options), InvalidArgument);
+  PointSet few;
+  few.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_THROW(extract_features(few), InvalidInput);
+}
+
+TEST(FeatureEvaluation, GroundTruthAgainstItselfIsPerfect) {
+  const SurfaceMesh cube = test::cube_mesh(1.0);
+  const std::vector<Polyline> truth = sharp_edges(cube);
+  std::vector<Vec3> corners = cube.vertices;
+  const FeatureEvaluation e = evaluate_features(truth, corners, cube);
+  EXPECT_DOUBLE_EQ(e.recall, 1.0);
+  EXPECT_DOUBLE_EQ(e.precision, 1.0);
+  EXPECT_EQ(e.truth_corners, 8u);
+  EXPECT_EQ(e.recalled_corners, 8u);
+  EXPECT_NEAR(e.truth_length, 24.0, 1e-9);
+  // Half the edges, shifted by 2% of the diagonal: recall 0.5 at 1%, precision 0.
+  std::vector<Polyline> half(truth.begin(), truth.begin() + 6);
+  for (Polyline& p : half)
+    for (Vec3& v : p) v = v + Vec3{0.02 * e.diagonal, 0, 0};
+  FeatureEvalOptions options;
+  options.tolerance = 0.01;
+  const FeatureEvaluation shifted = evaluate_features(half, {}, cube, options);
+  EXPECT_LE(shifted.precision, 0.5);
+  EXPECT_EQ(shifted.recalled_corners, 0u);
+}
