@@ -28,6 +28,9 @@ struct FeatureOptions {
   std::size_t min_cluster_size = 7;  ///< clusters of 6 points or fewer are pruned (7.2.2)
   int successor_k = 5;        ///< r_p = rho_5(p) (7.2.3)
   double junction_factor = 5; ///< r_junc = 5 x spacing of a polyline's last four points (7.2.3)
+  /// Beyond the thesis: an edge point must see two surface patches at least
+  /// this angle apart (degrees) to be kept; it is moved onto their intersection.
+  double min_dihedral_angle = 15;
   void check() const;
 };
 
@@ -65,6 +68,7 @@ struct FeatureResult {
   double noise_estimate = 0;         ///< estimated noise level, data units
   double average_spacing = 0;        ///< mean distance to the 6 nearest neighbours
   std::size_t edge_points = 0, corner_points = 0;
+  std::size_t unsharpened_edge_points = 0;  ///< edge points dropped: no two patches around them
   std::size_t clusters = 0, pruned_clusters = 0;
   std::vector<StageTiming> stages;   ///< detection, clustering, polylines and junctions (Table 7.1)
 };

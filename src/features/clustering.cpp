@@ -1,7 +1,5 @@
 // Algorithm 2 (thesis 7.2.2): union-find clustering of edge points whose
 // directions agree with the segment joining them; extremity points.
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -34,35 +32,8 @@ double line_angle(const Vec3& direction, const Vec3& segment) {
 
 }  // namespace
 
-// Beyond the thesis (which clusters the raw band, 7.2.2): a band several
-// samples wide leaves few close pairs aligned with the edge, and clusters
-// fragment. Projecting each point onto its local edge line first keeps
-// Algorithm 2 unchanged and makes its clusters follow whole edges.
-void thin_edge_band(std::vector<Vec3>& points, const std::vector<Vec3>& directions, int k) {
-  const std::size_t n = points.size();
-  if (n < 3) return;
-  const int kk = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k), n - 1));
-  for (int iteration = 0; iteration < 2; ++iteration) {
-    const KnnIndex index(points);
-    std::vector<Vec3> moved(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& range) {
-      std::vector<std::uint32_t> ids;
-      std::vector<double> d2;
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        index.nearest(points[i], kk + 1, ids, d2);
-        Vec3 c{0, 0, 0};
-        for (std::uint32_t j : ids) c = c + points[j];
-        c = (1.0 / ids.size()) * c;
-        const Vec3& e = directions[i];
-        moved[i] = c + dot(points[i] - c, e) * e;
-      }
-    });
-    points.swap(moved);
-  }
-}
-
 std::vector<EdgeCluster> cluster_edge_points(const std::vector<Vec3>& points, const std::vector<Vec3>& directions, int k,
-                                             double theta_deg, std::size_t min_size, std::size_t& pruned) {
+                                             double theta_deg, std::size_t min_size, double min_radius, std::size_t& pruned) {
   pruned = 0;
   const std::size_t n = points.size();
   if (n == 0) return {};
@@ -73,8 +44,13 @@ std::vector<EdgeCluster> cluster_edge_points(const std::vector<Vec3>& points, co
   std::vector<double> d2;
   const int kk = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k), n - 1));
   for (std::uint32_t i = 0; i < n && kk > 0; ++i) {
-    const double rho = rho_k(index, points[i], kk, ids, d2);
-    for (std::size_t m = 1; m < ids.size(); ++m) {
+    // rho_k, floored at the cloud's sampling scale: sharpened edge points
+    // are denser than the cloud along the edge but keep its gaps.
+    const double rho = std::max(min_radius, rho_k(index, points[i], kk, ids, d2));
+    if (rho > std::sqrt(d2.back())) index.within(points[i], rho, ids), d2.assign(ids.size(), 0.0);
+    for (std::size_t m = 0; m < ids.size(); ++m) {
+      if (ids[m] == i) continue;
+      if (d2[m] == 0.0) d2[m] = squared_distance(points[ids[m]], points[i]);
       if (!(std::sqrt(d2[m]) < rho)) continue;
       const std::uint32_t j = ids[m];
       const Vec3 segment = points[j] - points[i];

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
+
 
 #include "features/feature_graph_builder.h"
 #include "sharpmesh/errors.h"
@@ -73,6 +73,7 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
   result.offset_radius = options.offset_radius * sphere_radius;
 
   std::vector<Vec3> edge_points, edge_directions;
+  std::vector<std::uint32_t> edge_ids;
   {
     StageTimer timer(result.stages, "detection");
     const detail::KnnIndex index(points);
@@ -92,20 +93,22 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
     for (std::size_t i = 0; i < points.size(); ++i) {
       const PointFeature& f = result.points[i];
       if (f.type == PointClass::Edge) {
+        edge_ids.push_back(static_cast<std::uint32_t>(i));
         edge_points.push_back(points[i]);
         edge_directions.push_back(f.direction);
       }
       result.corner_points += f.type == PointClass::Corner;
     }
     result.edge_points = edge_points.size();
+    result.unsharpened_edge_points = detail::sharpen_edge_points(input, result.points, index, 3 * result.convolution_radius,
+                                                                 options.min_dihedral_angle, edge_ids, edge_points, edge_directions);
   }
   std::vector<detail::EdgeCluster> clusters;
   {
     StageTimer timer(result.stages, "clustering");
     report_progress(progress, "clustering", 0.0);
-    detail::thin_edge_band(edge_points, edge_directions, options.cluster_k);
     clusters = detail::cluster_edge_points(edge_points, edge_directions, options.cluster_k, options.cluster_angle,
-                                           options.min_cluster_size, result.pruned_clusters);
+                                           options.min_cluster_size, 4 * result.average_spacing, result.pruned_clusters);
     result.clusters = clusters.size();
     report_progress(progress, "clustering", 1.0);
   }

@@ -18,14 +18,17 @@ struct EdgeCluster {
 /// RMS distance from p to its k nearest other points of `index`.
 double rho_k(const KnnIndex& index, const Vec3& p, int k, std::vector<std::uint32_t>& ids, std::vector<double>& d2);
 
-/// Moves each edge point onto the line through the centroid of its k nearest
-/// edge points along its edge direction (twice): the band of edge points
-/// around a sharp edge, several samples wide, collapses onto its axis.
-void thin_edge_band(std::vector<Vec3>& points, const std::vector<Vec3>& directions, int k);
+/// Projects each edge point onto the intersection line of the two planes
+/// fitted to the smooth points within `radius` (split by normal); the
+/// direction becomes that line's. Points without two planes at least
+/// `min_angle_deg` apart are removed. Returns the number removed.
+std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFeature>& features, const KnnIndex& index,
+                                double radius, double min_angle_deg, std::vector<std::uint32_t>& edge_ids,
+                                std::vector<Vec3>& positions, std::vector<Vec3>& directions);
 
-/// Algorithm 2.
+/// Algorithm 2; close pairs are within max(rho_k, min_radius).
 std::vector<EdgeCluster> cluster_edge_points(const std::vector<Vec3>& points, const std::vector<Vec3>& directions, int k,
-                                             double theta_deg, std::size_t min_size, std::size_t& pruned);
+                                             double theta_deg, std::size_t min_size, double min_radius, std::size_t& pruned);
 
 /// A polyline with the edge direction at each vertex.
 struct TracedPolyline {

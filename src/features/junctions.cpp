@@ -150,9 +150,12 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor)
       if (e.polyline == removed) e.polyline = into;
   }
 
+  // A piece whose two ends were snapped to the same junction (grouped through
+  // other ends) is a stub inside the junction's ball, not an edge.
   std::vector<TracedPolyline> kept;
   for (std::size_t i = 0; i < lines.size(); ++i)
-    if (!dead[i] && lines[i].vertices.size() >= 2) kept.push_back(std::move(lines[i]));
+    if (!dead[i] && lines[i].vertices.size() >= 2 && (lines[i].closed || lines[i].vertices.front() != lines[i].vertices.back()))
+      kept.push_back(std::move(lines[i]));
 
   // Split polylines that pass through a junction or dart (T-junctions): an
   // interior vertex within the node's radius becomes the node.

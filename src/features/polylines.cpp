@@ -75,9 +75,12 @@ TracedPolyline trace_polyline(const EdgeCluster& cluster, const std::vector<Vec3
         }
       }
       if (best == UINT32_MAX) break;
-      // Points passed over on the way (projection behind the successor) are consumed too.
-      for (std::uint32_t q : ids)
-        if (!visited[q] && dot(pts[q] - pts[current], heading) <= best_t) visited[q] = true;
+      // Points passed over on the way (projection between p and its
+      // successor) are consumed too; points behind p stay for the walk back.
+      for (std::uint32_t q : ids) {
+        const double t = dot(pts[q] - pts[current], heading);
+        if (!visited[q] && t > 0 && t <= best_t) visited[q] = true;
+      }
       visited[best] = true;
       chain.push_back(best);
       Vec3 next = dirs[best];

@@ -1,6 +1,4 @@
-// Feature detection (thesis 7.2) on analytic fixtures: what holds today.
-// The polyline and junction targets of issue 3 (cube: 12 polylines, 8
-// corners) are not met yet and are not asserted here.
+// Feature extraction (thesis 7.2) on analytic fixtures.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -71,6 +69,40 @@ TEST(FeatureDetection, CubeEdgePointsLieAlongTheTwelveEdges) {
   EXPECT_GT(edge_near, 0.95 * r.edge_points);
   EXPECT_GT(far_smooth, 0.99 * far_points);
   EXPECT_LT(direction_error / r.edge_points, 0.02);
+}
+
+TEST(FeatureGraph, CubeGivesTwelvePolylinesAndEightCorners) {
+  const SurfaceMesh cube = test::cube_mesh(1.0);
+  const FeatureResult r = extract_features(sample(cube, 30000));
+  ASSERT_EQ(r.graph.polylines.size(), 12u);
+  ASSERT_EQ(r.graph.junctions.size(), 8u);
+  for (const Junction& j : r.graph.junctions) {
+    EXPECT_EQ(j.type, JunctionType::Corner);
+    EXPECT_EQ(j.degree, 3);
+    // At a cube corner: every coordinate near +-1 (1% of the diagonal).
+    for (double c : j.position) EXPECT_NEAR(std::abs(c), 1.0, 0.01 * std::sqrt(12.0));
+  }
+  // Every polyline within 1% of the diagonal of a true edge, and all edges covered.
+  FeatureEvalOptions options;
+  options.tolerance = 0.01;
+  const FeatureEvaluation e = evaluate_features(r.graph.polylines, polyline_corners(r.graph.polylines), cube, options);
+  EXPECT_DOUBLE_EQ(e.precision, 1.0);
+  EXPECT_GT(e.recall, 0.95);
+  EXPECT_EQ(e.recalled_corners, 8u);
+}
+
+TEST(FeatureGraph, CylinderGivesTwoClosedCirclesAndNothingOnItsSide) {
+  const SurfaceMesh cylinder = test::cylinder_mesh(0.5, 1.0, 256);
+  const FeatureResult r = extract_features(sample(cylinder, 50000));
+  ASSERT_EQ(r.graph.polylines.size(), 2u);
+  EXPECT_TRUE(r.graph.junctions.empty());
+  for (const Polyline& circle : r.graph.polylines) {
+    EXPECT_EQ(circle.front(), circle.back());
+    for (const Vec3& p : circle) {
+      EXPECT_NEAR(std::hypot(p[0], p[1]), 0.5, 0.01);
+      EXPECT_NEAR(std::abs(p[2]), 0.5, 0.01);
+    }
+  }
 }
 
 TEST(FeatureDetection, DoesNotDependOnTheThreadCount) {
