@@ -100,8 +100,11 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
       result.corner_points += f.type == PointClass::Corner;
     }
     result.edge_points = edge_points.size();
-    result.unsharpened_edge_points = detail::sharpen_edge_points(input, result.points, index, 3 * result.convolution_radius,
-                                                                 options.min_dihedral_angle, edge_ids, edge_points, edge_directions);
+    const double radius = 3 * result.convolution_radius;
+    // Two planes fit a sharp edge up to the noise and the curvature sagitta.
+    const double max_residual = std::max(0.05 * radius, 1.5 * result.noise_estimate);
+    result.unsharpened_edge_points = detail::sharpen_edge_points(input, result.points, index, radius, options.min_dihedral_angle,
+                                                                 max_residual, edge_ids, edge_points, edge_directions);
   }
   std::vector<detail::EdgeCluster> clusters;
   {

@@ -21,9 +21,10 @@ double rho_k(const KnnIndex& index, const Vec3& p, int k, std::vector<std::uint3
 /// Projects each edge point onto the intersection line of the two planes
 /// fitted to the smooth points within `radius` (split by normal); the
 /// direction becomes that line's. Points without two planes at least
-/// `min_angle_deg` apart are removed. Returns the number removed.
+/// `min_angle_deg` apart, or whose planes fit worse than `max_residual`
+/// (RMS), are removed. Returns the number removed.
 std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFeature>& features, const KnnIndex& index,
-                                double radius, double min_angle_deg, std::vector<std::uint32_t>& edge_ids,
+                                double radius, double min_angle_deg, double max_residual, std::vector<std::uint32_t>& edge_ids,
                                 std::vector<Vec3>& positions, std::vector<Vec3>& directions);
 
 /// Algorithm 2; close pairs are within max(rho_k, min_radius).

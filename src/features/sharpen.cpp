@@ -22,7 +22,8 @@ struct Plane {
   Eigen::Vector3d normal, point;
 };
 
-bool fit_plane(const std::vector<Eigen::Vector3d>& pts, Plane& plane) {
+// Least-squares plane; `rms` is the RMS distance of the points to it.
+bool fit_plane(const std::vector<Eigen::Vector3d>& pts, Plane& plane, double& rms) {
   if (pts.size() < 6) return false;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const auto& p : pts) c += p;
@@ -32,6 +33,7 @@ bool fit_plane(const std::vector<Eigen::Vector3d>& pts, Plane& plane) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
   solver.computeDirect(m);
   plane = {solver.eigenvectors().col(0), c};
+  rms = std::sqrt(std::max(0.0, solver.eigenvalues()(0)) / static_cast<double>(pts.size()));
   return true;
 }
 
@@ -40,7 +42,7 @@ Eigen::Vector3d eig(const Vec3& v) { return {v[0], v[1], v[2]}; }
 }  // namespace
 
 std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFeature>& features, const KnnIndex& index,
-                                double radius, double min_angle_deg, std::vector<std::uint32_t>& edge_ids,
+                                double radius, double min_angle_deg, double max_residual, std::vector<std::uint32_t>& edge_ids,
                                 std::vector<Vec3>& positions, std::vector<Vec3>& directions) {
   const double cos_min = std::cos(min_angle_deg * M_PI / 180.0);
   const std::size_t n = edge_ids.size();
@@ -82,7 +84,11 @@ std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFe
         }
       }
       Plane pa, pb;
-      if (!fit_plane(group[0], pa) || !fit_plane(group[1], pb)) continue;
+      double rms_a = 0, rms_b = 0;
+      if (!fit_plane(group[0], pa, rms_a) || !fit_plane(group[1], pb, rms_b)) continue;
+      // Near a corner three or more patches meet and two planes do not fit:
+      // such points are left out, and junction recovery extends the polylines there.
+      if (std::max(rms_a, rms_b) > max_residual) continue;
       Eigen::Vector3d d = pa.normal.cross(pb.normal);
       const double sin_angle = d.norm();
       if (sin_angle < std::sin(min_angle_deg * M_PI / 180.0)) continue;
