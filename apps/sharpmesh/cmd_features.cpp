@@ -28,6 +28,9 @@ void add_feature_options(CLI::App& sub, FeatureOptions& f) {
   sub.add_option("--successor-k", f.successor_k, "r_p = rho_k(p) of the successor procedure (7.2.3)")->capture_default_str()->group(g);
   sub.add_option("--junction-factor", f.junction_factor, "r_junc = factor x spacing of a polyline's last four points (7.2.3)")
       ->capture_default_str()->group(g);
+  sub.add_option("--denoise-k", f.denoise_k,
+                 "Jet-smooth over k neighbours before the VCM; -1 = automatic (noise above half the spacing), 0 = never")
+      ->capture_default_str()->group(g);
 }
 
 nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, double diagonal) {
@@ -42,13 +45,15 @@ nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, d
   return {{"parameters",
            {{"offset_radius", o.offset_radius}, {"convolution_radius", o.convolution_radius}, {"t1", o.t1}, {"t2", o.t2},
             {"cluster_k", o.cluster_k}, {"cluster_angle", o.cluster_angle}, {"min_cluster_size", o.min_cluster_size},
-            {"successor_k", o.successor_k}, {"junction_factor", o.junction_factor}}},
+            {"successor_k", o.successor_k}, {"junction_factor", o.junction_factor},
+            {"denoise_k", o.denoise_k}}},
           {"derived",
            {{"R", length_json(r.offset_radius, diagonal)}, {"r", length_json(r.convolution_radius, diagonal)},
-            {"noise_estimate", length_json(r.noise_estimate, diagonal)}}},
+            {"noise_estimate", length_json(r.noise_estimate, diagonal)},
+            {"average_spacing", length_json(r.average_spacing, diagonal)}, {"denoise_k", r.denoise_k}}},
           {"counts",
            {{"points", r.points.size()}, {"edge_points", r.edge_points}, {"corner_points", r.corner_points},
-            {"clusters", r.clusters}, {"pruned_clusters", r.pruned_clusters}, {"polylines", r.graph.polylines.size()},
+            {"unsharpened_edge_points", r.unsharpened_edge_points}, {"clusters", r.clusters}, {"pruned_clusters", r.pruned_clusters}, {"polylines", r.graph.polylines.size()},
             {"closed_polylines", closed}, {"darts", counts[0]}, {"cusps", counts[1]}, {"corners", counts[2]}}},
           {"junctions", junctions},
           {"stages", stages_json(r.stages)}};

@@ -31,6 +31,11 @@ struct FeatureOptions {
   /// Beyond the thesis: an edge point must see two surface patches at least
   /// this angle apart (degrees) to be kept; it is moved onto their intersection.
   double min_dihedral_angle = 15;
+  /// Beyond the thesis: jet smoothing (App. A.6) over k neighbours before the
+  /// VCM, for clouds whose noise is several times their spacing. -1 =
+  /// automatic (when the estimated noise exceeds half the average spacing),
+  /// 0 = never.
+  int denoise_k = -1;
   void check() const;
 };
 
@@ -66,7 +71,8 @@ struct FeatureResult {
   double offset_radius = 0;          ///< R, data units
   double convolution_radius = 0;     ///< r, data units
   double noise_estimate = 0;         ///< estimated noise level, data units
-  double average_spacing = 0;        ///< mean distance to the 6 nearest neighbours
+  double average_spacing = 0;        ///< mean distance to the 6 nearest neighbours (after denoising)
+  int denoise_k = 0;                 ///< jet-smoothing neighbours used before the VCM (0: none)
   std::size_t edge_points = 0, corner_points = 0;
   std::size_t unsharpened_edge_points = 0;  ///< edge points dropped: no two patches around them
   std::size_t clusters = 0, pruned_clusters = 0;
