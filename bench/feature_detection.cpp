@@ -192,9 +192,9 @@ int main(int argc, char** argv) {
   eval_options.tolerance = band;
   const sharpmesh::FeatureEvaluation eval =
       sharpmesh::evaluate_features(result.graph.polylines, extracted_corners, mesh, eval_options);
-  std::printf("\nR = %.4g, r = %.4g (%.3g R), noise estimate %.3g%%, spacing %.3g%% of the diagonal, denoise k %d\n", result.offset_radius,
+  std::printf("\nR = %.4g, r = %.4g (%.3g R), noise estimate %.3g%%, spacing %.3g%% of the diagonal, denoise k %d x %d\n", result.offset_radius,
               result.convolution_radius, result.convolution_radius / result.offset_radius,
-              100 * result.noise_estimate / diagonal, 100 * result.average_spacing / diagonal, result.denoise_k);
+              100 * result.noise_estimate / diagonal, 100 * result.average_spacing / diagonal, result.denoise_k, result.denoise_passes);
   std::printf("polylines: %zu, recall %.3f, precision %.3f at %g of the diagonal; corners %zu of %zu; stages 1-3 %.2f s\n",
               result.graph.polylines.size(), eval.recall, eval.precision, band, eval.recalled_corners, eval.truth_corners,
               ours_total);

@@ -73,6 +73,7 @@ struct FeatureResult {
   double noise_estimate = 0;         ///< estimated noise level, data units
   double average_spacing = 0;        ///< mean distance to the 6 nearest neighbours (after denoising)
   int denoise_k = 0;                 ///< jet-smoothing neighbours used before the VCM (0: none)
+  int denoise_passes = 0;            ///< jet-smoothing passes run
   std::size_t edge_points = 0, corner_points = 0;
   std::size_t unsharpened_edge_points = 0;  ///< edge points dropped: no two patches around them
   std::size_t clusters = 0, pruned_clusters = 0;

@@ -36,6 +36,7 @@ namespace {
 // Median plane-fit residual over 24 neighbours, in average spacings, above
 // which a cloud counts as rough (clean CAD samples: below 0.05; 0.3% noise: 0.3).
 constexpr double kRoughnessRatio = 0.25;
+constexpr int kMaxDenoisePasses = 3;
 
 // Noise level: median, over a fixed subset of points, of the RMS distance of
 // the neighbours within `radius` to their least-squares plane. On clean CAD
@@ -103,6 +104,14 @@ void classify_cloud(const std::vector<Vec3>& points, const detail::KnnIndex& ind
   result.points = classify_points(cvcm, options.t1, options.t2);
 }
 
+// Upper quartile of lambda0/lambda1: on a clean sample, face points, far above t1.
+double face_anisotropy(const std::vector<PointFeature>& features) {
+  std::vector<double> anisotropy(features.size());
+  for (std::size_t i = 0; i < anisotropy.size(); ++i) anisotropy[i] = features[i].ratio01;
+  std::nth_element(anisotropy.begin(), anisotropy.begin() + 3 * anisotropy.size() / 4, anisotropy.end());
+  return anisotropy[3 * anisotropy.size() / 4];
+}
+
 }  // namespace
 
 FeatureResult extract_features(const PointSet& input, const FeatureOptions& options, const Progress& progress) {
@@ -134,22 +143,23 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
     result.denoise_k = options.denoise_k;
     if (options.denoise_k < 0) {
       const double roughness = estimate_noise(input.points, *index, 0, 24) / result.average_spacing;
-      std::vector<double> anisotropy(result.points.size());
-      for (std::size_t i = 0; i < anisotropy.size(); ++i) anisotropy[i] = result.points[i].ratio01;
-      std::nth_element(anisotropy.begin(), anisotropy.begin() + 3 * anisotropy.size() / 4, anisotropy.end());
-      const bool noisy = roughness > kRoughnessRatio && anisotropy[3 * anisotropy.size() / 4] < 2 * options.t1;
+      const bool noisy = roughness > kRoughnessRatio && face_anisotropy(result.points) < 2 * options.t1;
       const double ratio = result.noise_estimate / result.average_spacing;
       result.denoise_k = noisy ? static_cast<int>(std::clamp(100 * ratio * ratio, 24.0, 300.0)) : 0;
     }
-    if (result.denoise_k > 0) {
+    // Up to three passes, while the faces' anisotropy stays below 2 t1
+    // (each pass divides the noise by about sqrt(k / 5)).
+    for (int pass = 0; pass < (options.denoise_k < 0 ? kMaxDenoisePasses : 1) && result.denoise_k > 0; ++pass) {
+      if (pass > 0 && face_anisotropy(result.points) >= 2 * options.t1) break;
       report_progress(progress, "denoising", 0.0);
-      smoothed = input;
+      if (pass == 0) smoothed = input;
       JetSmoothingOptions jet;
       jet.k = std::min<int>(result.denoise_k, static_cast<int>(input.size()) - 1);
       jet_smooth(smoothed, jet);
       cloud = &smoothed;
       index = std::make_unique<detail::KnnIndex>(smoothed.points);
       classify_cloud(smoothed.points, *index, options, result, progress);
+      result.denoise_passes = pass + 1;
     }
     const std::vector<Vec3>& points = cloud->points;
     for (std::size_t i = 0; i < points.size(); ++i) {
