@@ -131,14 +131,15 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
   {
     StageTimer timer(result.stages, "detection");
     auto index = std::make_unique<detail::KnnIndex>(input.points);
-    classify_cloud(input.points, *index, options, result, progress);
+    if (options.denoise_k <= 0) classify_cloud(input.points, *index, options, result, progress);
     // Beyond the thesis: under noise comparable to the sampling spacing the
     // Voronoi cells turn into cones (Fig. 7.2 right), the anisotropy of the
     // faces collapses and no t1 separates edges from faces. Two symptoms
-    // together identify it: a quarter of the points or more are rough at
-    // the sampling scale, and the upper quartile of lambda0/lambda1 (mostly
-    // face points) falls below 2 t1. Such clouds are jet-smoothed (App. A.6)
-    // over a neighbourhood a few noise deviations wide and classified again;
+    // together identify it: half of the points or more are rough at the
+    // sampling scale (plane residual over 24 neighbours), and the upper
+    // quartile of lambda0/lambda1 (mostly face points) falls below 2 t1.
+    // Such clouds are jet-smoothed (App. A.6) over a neighbourhood a few
+    // noise deviations wide and classified again;
     // the rounding left at the creases is undone by the sharpening below.
     result.denoise_k = options.denoise_k;
     if (options.denoise_k < 0) {

@@ -119,6 +119,20 @@ TEST(FeatureGraph, CleanCloudsAreNotDenoised) {
   EXPECT_EQ(extract_features(sample(test::sphere_mesh(5), 30000)).denoise_k, 0);
 }
 
+TEST(FeatureGraph, ForcedDenoisingRunsOnePassAndKeepsTheEdges) {
+  const SurfaceMesh cube = test::cube_mesh(1.0);
+  FeatureOptions options;
+  options.denoise_k = 24;
+  const FeatureResult r = extract_features(sample(cube, 30000), options);
+  EXPECT_EQ(r.denoise_k, 24);
+  EXPECT_EQ(r.denoise_passes, 1);
+  FeatureEvalOptions eval;
+  eval.tolerance = 0.01;
+  const FeatureEvaluation e = evaluate_features(r.graph.polylines, polyline_corners(r.graph.polylines), cube, eval);
+  EXPECT_GT(e.recall, 0.9);
+  EXPECT_GT(e.precision, 0.9);
+}
+
 // Degenerate inputs: a correct empty result or a clear error, never a crash.
 TEST(FeatureDetection, CoplanarPointsGiveNoFeature) {
   PointSet plane;
