@@ -27,6 +27,13 @@ double distance_to_cube_edge(const Vec3& p) {
   return std::hypot(gaps[0], gaps[1]);
 }
 
+// The Section 8.2 benchmark at 1% of the diagonal, corners from the polylines.
+FeatureEvaluation evaluate_within_one_percent(const FeatureResult& r, const SurfaceMesh& reference) {
+  FeatureEvalOptions options;
+  options.tolerance = 0.01;
+  return evaluate_features(r.graph.polylines, polyline_corners(r.graph.polylines), reference, options);
+}
+
 }  // namespace
 
 TEST(VoronoiCovariance, PlaneSamplesHaveThePlaneNormalAsMainAxis) {
@@ -83,9 +90,7 @@ TEST(FeatureGraph, CubeGivesTwelvePolylinesAndEightCorners) {
     for (double c : j.position) EXPECT_NEAR(std::abs(c), 1.0, 0.01 * std::sqrt(12.0));
   }
   // Every polyline within 1% of the diagonal of a true edge, and all edges covered.
-  FeatureEvalOptions options;
-  options.tolerance = 0.01;
-  const FeatureEvaluation e = evaluate_features(r.graph.polylines, polyline_corners(r.graph.polylines), cube, options);
+  const FeatureEvaluation e = evaluate_within_one_percent(r, cube);
   EXPECT_DOUBLE_EQ(e.precision, 1.0);
   EXPECT_GT(e.recall, 0.95);
   EXPECT_EQ(e.recalled_corners, 8u);
@@ -102,9 +107,7 @@ TEST(FeatureGraph, NoisyCubeStillGivesItsTwelveEdges) {
   sampling.noise = 0.01;
   const FeatureResult r = extract_features(sample_mesh(cube, sampling));
   EXPECT_GT(r.denoise_k, 0);
-  FeatureEvalOptions options;
-  options.tolerance = 0.01;
-  const FeatureEvaluation e = evaluate_features(r.graph.polylines, polyline_corners(r.graph.polylines), cube, options);
+  const FeatureEvaluation e = evaluate_within_one_percent(r, cube);
   EXPECT_GT(e.recall, 0.9);
   EXPECT_GT(e.precision, 0.9);
   // The same cloud without denoising: the failure this guards against.
@@ -126,9 +129,7 @@ TEST(FeatureGraph, ForcedDenoisingRunsOnePassAndKeepsTheEdges) {
   const FeatureResult r = extract_features(sample(cube, 30000), options);
   EXPECT_EQ(r.denoise_k, 24);
   EXPECT_EQ(r.denoise_passes, 1);
-  FeatureEvalOptions eval;
-  eval.tolerance = 0.01;
-  const FeatureEvaluation e = evaluate_features(r.graph.polylines, polyline_corners(r.graph.polylines), cube, eval);
+  const FeatureEvaluation e = evaluate_within_one_percent(r, cube);
   EXPECT_GT(e.recall, 0.9);
   EXPECT_GT(e.precision, 0.9);
 }
@@ -148,10 +149,7 @@ TEST(FeatureDetection, DuplicatePointsAreHandled) {
   for (std::size_t i = 0; i < n; i += 2) points.points.push_back(points.points[i]);  // 50% duplicated
   const FeatureResult r = extract_features(points);
   ASSERT_EQ(r.points.size(), points.size());
-  FeatureEvalOptions options;
-  options.tolerance = 0.01;
-  const FeatureEvaluation e =
-      evaluate_features(r.graph.polylines, polyline_corners(r.graph.polylines), test::cube_mesh(1.0), options);
+  const FeatureEvaluation e = evaluate_within_one_percent(r, test::cube_mesh(1.0));
   EXPECT_GT(e.recall, 0.9);
   EXPECT_GT(e.precision, 0.9);
 }
