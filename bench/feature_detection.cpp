@@ -19,7 +19,6 @@
 #include <cstdio>
 #include <string>
 
-#include "pointset/knn.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/features.h"
 #include "sharpmesh/io.h"
@@ -29,33 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Distance from each point to the nearest ground-truth sharp edge, by a dense
-// resampling of the edges (step << band) and a kd-tree.
-std::vector<double> distance_to_edges(const std::vector<sharpmesh::Vec3>& points,
-                                      const std::vector<sharpmesh::Polyline>& edges, double step) {
-  std::vector<sharpmesh::Vec3> samples;
-  for (const auto& line : edges)
-    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-      const double length = sharpmesh::distance(line[i], line[i + 1]);
-      const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
-      for (int s = 0; s <= n; ++s) {
-        const double t = static_cast<double>(s) / n;
-        samples.push_back({line[i][0] + t * (line[i + 1][0] - line[i][0]), line[i][1] + t * (line[i + 1][1] - line[i][1]),
-                           line[i][2] + t * (line[i + 1][2] - line[i][2])});
-      }
-    }
-  std::vector<double> out(points.size(), std::numeric_limits<double>::infinity());
-  if (samples.empty()) return out;
-  const sharpmesh::detail::KnnIndex index(samples);
-  std::vector<std::uint32_t> ids;
-  std::vector<double> d2;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    index.nearest(points[i], 1, ids, d2);
-    out[i] = std::sqrt(d2[0]);
-  }
-  return out;
-}
 
 struct Score {
   double precision = 0, recall = 0, f1 = 0;
@@ -142,7 +114,7 @@ int main(int argc, char** argv) {
   const double diagonal = sharpmesh::bounding_box(cloud.points).diagonal();
   if (band <= 0) band = noise > 0 ? 0.01 : 0.005;
   const std::vector<sharpmesh::Polyline> truth = sharpmesh::sharp_edges(mesh, sharp_angle);
-  const std::vector<double> dist = distance_to_edges(cloud.points, truth, 0.0005 * diagonal);
+  const std::vector<double> dist = sharpmesh::distances_to_polylines(cloud.points, truth, 0.0005 * diagonal);
   std::printf("%s: %zu points, noise %g, band %g of the diagonal, %zu sharp edges\n", mesh_path.c_str(), cloud.size(), noise,
               band, truth.size());
   std::printf("%-28s %9s %9s %9s %9s %9s\n", "detector", "flagged", "precision", "recall", "F1", "VCM s");

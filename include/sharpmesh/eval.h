@@ -89,6 +89,10 @@ struct FeatureEvaluation {
   double extracted_to_truth_mean = 0, extracted_to_truth_max = 0;
   std::size_t truth_corners = 0, recalled_corners = 0;
 };
+/// Distance from each point to the nearest of the polylines, exact up to
+/// `step`/2 (the polylines are resampled every `step`).
+std::vector<double> distances_to_polylines(const std::vector<Vec3>& points, const std::vector<Polyline>& polylines,
+                                           double step);
 /// Points where `min_degree` or more open polylines end (corners of a feature graph).
 std::vector<Vec3> polyline_corners(const std::vector<Polyline>& polylines, int min_degree = 3);
 

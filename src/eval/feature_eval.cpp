@@ -29,27 +29,32 @@ struct Coverage {
   double covered = 0, total = 0, mean = 0, max = 0;
 };
 
-// Distance from each weighted sample to the densified target (error below step/2).
+// Distance from each sample to the nearest target point (infinite without targets).
+std::vector<double> nearest_distances(const std::vector<Vec3>& samples, const std::vector<Vec3>& target) {
+  std::vector<double> out(samples.size(), std::numeric_limits<double>::infinity());
+  if (target.empty()) return out;
+  const detail::KnnIndex index(target);
+  std::vector<std::uint32_t> ids;
+  std::vector<double> d2;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    index.nearest(samples[i], 1, ids, d2);
+    out[i] = std::sqrt(d2[0]);
+  }
+  return out;
+}
+
+// Length-weighted coverage of the samples by the densified target (error below step/2).
 Coverage coverage(const std::vector<Vec3>& samples, const std::vector<double>& weights, const std::vector<Vec3>& target,
                   double tolerance) {
   Coverage c;
   if (samples.empty()) return c;
-  if (target.empty()) {
-    for (double w : weights) c.total += w;
-    c.max = c.mean = std::numeric_limits<double>::infinity();
-    return c;
-  }
-  const detail::KnnIndex index(target);
-  std::vector<std::uint32_t> ids;
-  std::vector<double> d2;
+  const std::vector<double> d = nearest_distances(samples, target);
   double weighted = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    index.nearest(samples[i], 1, ids, d2);
-    const double d = std::sqrt(d2[0]);
     c.total += weights[i];
-    weighted += weights[i] * d;
-    if (d <= tolerance) c.covered += weights[i];
-    c.max = std::max(c.max, d);
+    weighted += weights[i] * d[i];
+    if (d[i] <= tolerance) c.covered += weights[i];
+    c.max = std::max(c.max, d[i]);
   }
   c.mean = weighted / c.total;
   return c;
@@ -72,6 +77,15 @@ std::vector<Vec3> polyline_corners(const std::vector<Polyline>& polylines, int m
     i = j;
   }
   return corners;
+}
+
+std::vector<double> distances_to_polylines(const std::vector<Vec3>& points, const std::vector<Polyline>& polylines,
+                                           double step) {
+  if (!(step > 0)) throw InvalidArgument("polyline resampling step must be positive");
+  std::vector<Vec3> dense;
+  std::vector<double> unused;
+  densify(polylines, step, dense, unused);
+  return nearest_distances(points, dense);
 }
 
 void FeatureEvalOptions::check() const {

@@ -68,29 +68,11 @@ double estimate_noise(const std::vector<Vec3>& points, const detail::KnnIndex& i
   return residual[samples / 2];
 }
 
-// Mean distance to the k nearest other points (App. A.2), on an existing index.
-double mean_spacing(const std::vector<Vec3>& points, const detail::KnnIndex& index, int k) {
-  std::vector<double> spacing(points.size(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<std::uint32_t> ids;
-    std::vector<double> d2;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      index.nearest(points[i], k + 1, ids, d2);
-      for (std::size_t j = 1; j < d2.size(); ++j) spacing[i] += std::sqrt(d2[j]);
-      if (d2.size() > 1) spacing[i] /= static_cast<double>(d2.size() - 1);
-    }
-  });
-  // Summed in order, so that the result does not depend on the thread count.
-  double sum = 0;
-  for (double s : spacing) sum += s;
-  return sum / static_cast<double>(points.size());
-}
-
 // Noise level, spacing, r, and Algorithm 1 on the convolved VCM.
 void classify_cloud(const std::vector<Vec3>& points, const detail::KnnIndex& index, const FeatureOptions& options,
                     FeatureResult& result, const Progress& progress) {
   result.noise_estimate = estimate_noise(points, index, result.offset_radius / 3);
-  result.average_spacing = mean_spacing(points, index, 6);
+  result.average_spacing = detail::average_spacing(points, index, 6);
   // r = R/10 (7.2.1). The automatic mode widens it so that the convolution
   // averages over enough cells: at least 2.5 average spacings (a sparser
   // cloud than the thesis's 200k fandisk otherwise convolves single, noisy

@@ -30,13 +30,20 @@ double average_spacing(const PointSet& points, int k, const Progress& progress) 
   // CGAL 5.5's compute_average_spacing counts the point itself among the k
   // (its result is k/(k+1) of this), so the kd-tree is queried directly.
   report_progress(progress, "average spacing", 0.0);
-  const detail::KnnIndex index(points.points);
+  const double spacing = detail::average_spacing(points.points, detail::KnnIndex(points.points), k);
+  report_progress(progress, "average spacing", 1.0);
+  return spacing;
+}
+
+namespace detail {
+
+double average_spacing(const std::vector<Vec3>& points, const KnnIndex& index, int k) {
   std::vector<double> mean(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      index.nearest(points.points[i], k + 1, ids, d2);
+      index.nearest(points[i], k + 1, ids, d2);
       double sum = 0;
       int count = 0;
       for (std::size_t j = 0; j < ids.size() && count < k; ++j) {
@@ -49,8 +56,9 @@ double average_spacing(const PointSet& points, int k, const Progress& progress) 
   });
   double total = 0;  // summed in order: independent of the thread count
   for (double m : mean) total += m;
-  report_progress(progress, "average spacing", 1.0);
   return total / static_cast<double>(points.size());
 }
+
+}  // namespace detail
 
 }  // namespace sharpmesh

@@ -28,4 +28,9 @@ class KnnIndex {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The thesis's avg (App. A.2): mean distance from each point to its k
+/// nearest *other* points, on an existing index of `points`. Summed in
+/// order, so the result does not depend on the thread count.
+double average_spacing(const std::vector<Vec3>& points, const KnnIndex& index, int k);
+
 }  // namespace sharpmesh::detail

@@ -110,3 +110,15 @@ TEST(Distances, IdenticalMeshesAreAtZeroAndAScaledCubeAtItsOffset) {
 TEST(Distances, RejectsEmptyMeshes) {
   EXPECT_THROW(compare_meshes(SurfaceMesh{}, test::cube_mesh()), InvalidInput);
 }
+
+TEST(Distances, PointsToPolylinesUpToHalfTheStep) {
+  const std::vector<Polyline> lines = {{{0, 0, 0}, {1, 0, 0}}, {{0, 5, 0}, {0, 5, 1}}};
+  const std::vector<Vec3> points = {{0.5, 0.3, 0}, {2, 0, 0}, {0, 5.4, 0.5}};
+  const std::vector<double> d = distances_to_polylines(points, lines, 0.01);
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_NEAR(d[0], 0.3, 0.005);
+  EXPECT_NEAR(d[1], 1.0, 0.005);
+  EXPECT_NEAR(d[2], 0.4, 0.005);
+  EXPECT_TRUE(std::isinf(distances_to_polylines(points, {}, 0.01)[0]));
+  EXPECT_THROW(distances_to_polylines(points, lines, 0.0), InvalidArgument);
+}
