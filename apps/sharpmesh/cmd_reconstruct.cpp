@@ -6,85 +6,142 @@
 #include "sharpmesh/reconstruct.h"
 
 namespace sharpmesh::cli {
+namespace {
+
+nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
+  const ImplicitMeshingResult& m = r.meshing;
+  nlohmann::json gaps = nlohmann::json::array();
+  for (const UncoveredGap& g : m.uncovered)
+    gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", length_json(g.gap, diagonal)}});
+  return {{"polylines", r.features.graph.polylines.size()},
+          {"protecting_balls", m.protecting_balls},
+          {"enlarged_balls", m.enlarged_balls},
+          {"max_gap", length_json(m.max_gap, diagonal)},
+          {"protected_segments", m.protected_segments},
+          {"represented_segments", m.represented_segments},
+          {"represented_fraction", m.protected_segments ? double(m.represented_segments) / m.protected_segments : 1.0},
+          {"uncovered_gaps", gaps.size()},
+          {"uncovered", gaps},
+          {"feature_edge_polylines", m.feature_edges.size()}};
+}
+
+}  // namespace
 
 Command add_reconstruct(CLI::App& app) {
   struct Options {
-    std::string input, output, normals = "jet";
-    bool no_features = false, ascii = false;
+    std::string input, output, normals = "auto", features_file, sharp_edges_out;
+    bool no_features = false, fixed_balls = false, ascii = false;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
   auto common = std::make_shared<CommonOptions>();
-  CLI::App* sub = app.add_subcommand("reconstruct", "Point cloud -> mesh: normals, Poisson implicit function, Delaunay refinement (thesis Ch. 7)");
+  CLI::App* sub = app.add_subcommand(
+      "reconstruct", "Point cloud -> mesh with sharp edges: features, normals, Poisson implicit function, protected Delaunay refinement (thesis Ch. 7)");
   sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las); normals are used if present")->required();
   sub->add_option("-o,--output", o->output, "Output mesh (.ply, .off, .obj)")->required();
   sub->add_option("--delta", o->reconstruct.delta,
                   "Mesh size d' = delta x average spacing (6-NN); facet angle 25 deg, edges <= 2d', distance <= 0.6d' (7.3.2)")
       ->capture_default_str();
-  sub->add_flag("--no-features", o->no_features, "Plain Delaunay refinement of the Poisson implicit function (the thesis's PIF baseline)");
-  sub->add_option("--normals", o->normals, "Normal estimation when the input has none: pca or jet")->check(CLI::IsMember({"pca", "jet"}))->capture_default_str();
-  sub->add_option("--normal-k", o->reconstruct.normals.k, "Neighbours for normal estimation")->capture_default_str();
+  auto* no_features = sub->add_flag("--no-features", o->no_features,
+                                    "Plain Delaunay refinement of the Poisson implicit function (the thesis's PIF baseline)");
+  sub->add_option("--features", o->features_file, "Protect these polylines (CGAL text format) instead of extracting features")
+      ->excludes(no_features);
+  sub->add_option("--sharp-edges", o->sharp_edges_out, "Write the mesh edges that represent the protected features (polylines)");
+  sub->add_option("--ball-radius", o->reconstruct.ball_radius, "Protecting-ball radius, fraction of d' (7.3.2)")->capture_default_str();
+  sub->add_flag("--fixed-balls", o->fixed_balls,
+                "Keep every ball at --ball-radius (the thesis) instead of growing it to reach the implicit surface");
+  sub->add_option("--normals", o->normals, "Normals when the input has none: auto (cvcm with features, else jet), cvcm, jet or pca")
+      ->check(CLI::IsMember({"auto", "cvcm", "pca", "jet"}))
+      ->capture_default_str();
+  sub->add_option("--normal-k", o->reconstruct.normals.k, "Neighbours for jet/pca normal estimation")->capture_default_str();
   sub->add_option("--orient-k", o->reconstruct.orientation.k, "Neighbours for MST normal orientation")->capture_default_str();
   sub->add_flag("--recompute-normals", o->reconstruct.recompute_normals, "Ignore the input's normals and estimate new ones");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
+  add_feature_options(*sub, o->reconstruct.features);
   common->add_to(*sub);
   auto run = [o, common] {
-    if (!o->no_features)
-      throw InvalidArgument("feature-preserving reconstruction is not available in this version yet; pass --no-features for the PIF baseline");
     check_output(o->output, "mesh");
+    check_output(o->sharp_edges_out, "sharp edges");
     check_output(common->report, "report");
-    o->reconstruct.normals.method = o->normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet;
+    ReconstructOptions& options = o->reconstruct;
+    options.feature_mode = o->no_features ? FeatureMode::None : o->features_file.empty() ? FeatureMode::Extract : FeatureMode::Given;
+    options.adapt_balls_to_gap = !o->fixed_balls;
+    if (o->normals == "auto") {
+      options.normal_source = NormalSource::Automatic;
+    } else if (o->normals == "cvcm") {
+      options.normal_source = NormalSource::Cvcm;
+    } else {
+      options.normal_source = NormalSource::Estimated;
+      options.normals.method = o->normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet;
+    }
+    if (options.normal_source == NormalSource::Cvcm && options.feature_mode != FeatureMode::Extract)
+      throw InvalidArgument("--normals cvcm needs feature extraction (drop --no-features / --features)");
     const auto start = std::chrono::steady_clock::now();
     std::vector<StageTiming> io_stages;
     PointSet points;
     {
       StageTimer timer(io_stages, "read");
       points = read_point_set(o->input);
+      if (options.feature_mode == FeatureMode::Given) options.given_features = read_polylines(o->features_file);
     }
     ProgressPrinter printer(common->quiet);
-    ReconstructResult result = reconstruct(points, o->reconstruct, printer.callback());
+    ReconstructResult result = reconstruct(points, options, printer.callback());
     {
       StageTimer timer(io_stages, "write");
       write_mesh(o->output, result.mesh, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
+      if (!o->sharp_edges_out.empty()) write_polylines(o->sharp_edges_out, result.meshing.feature_edges);
     }
     std::vector<StageTiming> stages{io_stages[0]};
     stages.insert(stages.end(), result.stages.begin(), result.stages.end());
     stages.push_back(io_stages[1]);
     const double diagonal = bounding_box(points.points).diagonal();
+    const ImplicitMeshingResult& m = result.meshing;
     if (!common->quiet) {
       printer.message("reconstruct: " + std::to_string(result.input_points) + " points -> " + std::to_string(result.mesh.faces.size()) +
                       " facets, " + std::to_string(result.mesh.vertices.size()) + " vertices -> " + o->output);
+      if (options.feature_mode != FeatureMode::None) {
+        char line[200];
+        std::snprintf(line, sizeof line, "  features: %zu polylines, %zu balls (%zu grown), %zu/%zu segments are mesh edges, %zu uncovered gaps",
+                      result.features.graph.polylines.size(), m.protecting_balls, m.enlarged_balls, m.represented_segments,
+                      m.protected_segments, m.uncovered.size());
+        printer.message(line);
+      }
       for (const StageTiming& s : stages) {
         char line[160];
-        std::snprintf(line, sizeof line, "  %-12s %8.2f s  %8.1f MiB peak", s.name.c_str(), s.seconds, s.peak_rss_bytes / 1048576.0);
+        std::snprintf(line, sizeof line, "  %-26s %8.2f s  %8.1f MiB peak", s.name.c_str(), s.seconds, s.peak_rss_bytes / 1048576.0);
         printer.message(line);
       }
     }
-    write_report(common->report,
-                 {{"command", "reconstruct"},
-                  {"input", o->input},
-                  {"output", o->output},
-                  {"parameters",
-                   {{"features", !o->no_features}, {"delta", o->reconstruct.delta}, {"spacing_k", o->reconstruct.spacing_k},
-                    {"normals", o->normals}, {"normal_k", o->reconstruct.normals.k}, {"orient_k", o->reconstruct.orientation.k},
-                    {"recompute_normals", o->reconstruct.recompute_normals}, {"max_facets", o->reconstruct.max_facets},
-                    {"seed", o->reconstruct.seed}}},
-                  {"derived",
-                   {{"average_spacing", length_json(result.average_spacing, diagonal)},
-                    {"d_prime", length_json(result.d_prime, diagonal)},
-                    {"facet_angle_deg", result.criteria.angle},
-                    {"max_edge_length", length_json(result.criteria.edge_length, diagonal)},
-                    {"max_surface_distance", length_json(result.criteria.distance, diagonal)},
-                    {"estimated_facets", result.estimated_facets}}},
-                  {"counts",
-                   {{"input_points", result.input_points}, {"points_used", result.used_points},
-                    {"normals_estimated", result.normals_estimated}, {"vertices", result.mesh.vertices.size()},
-                    {"facets", result.mesh.faces.size()}}},
-                  {"stages", stages_json(stages)},
-                  {"seconds", seconds_since(start)}});
+    nlohmann::json report = {
+        {"command", "reconstruct"},
+        {"input", o->input},
+        {"output", o->output},
+        {"parameters",
+         {{"features", o->no_features ? "none" : o->features_file.empty() ? "extract" : o->features_file},
+          {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
+          {"adapt_balls_to_gap", options.adapt_balls_to_gap}, {"normals", o->normals}, {"normal_k", options.normals.k},
+          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals},
+          {"max_facets", options.max_facets}, {"seed", options.seed}}},
+        {"derived",
+         {{"average_spacing", length_json(result.average_spacing, diagonal)},
+          {"d_prime", length_json(result.d_prime, diagonal)},
+          {"facet_angle_deg", result.criteria.angle},
+          {"max_edge_length", length_json(result.criteria.edge_length, diagonal)},
+          {"max_surface_distance", length_json(result.criteria.distance, diagonal)},
+          {"ball_radius", length_json(options.ball_radius * result.d_prime, diagonal)},
+          {"estimated_facets", result.estimated_facets}}},
+        {"counts",
+         {{"input_points", result.input_points}, {"points_used", result.used_points},
+          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source},
+          {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()}}},
+        {"stages", stages_json(stages)},
+        {"seconds", seconds_since(start)}};
+    if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);
+    if (options.feature_mode == FeatureMode::Extract) report["features"] = feature_report(result.features, options.features, diagonal);
+    write_report(common->report, report);
   };
   return {sub, run, common};
 }

@@ -21,6 +21,17 @@ class ImplicitSurface {
   virtual Vec3 inside_point() const = 0;
 };
 
+/// Central-difference gradient of the function at p, with step h.
+Vec3 implicit_gradient(const ImplicitSurface& surface, const Vec3& p, double h);
+
+/// Closest point of the zero level set found by Newton steps along the
+/// gradient (each step at most `max_step` long), starting from p. Returns
+/// false when no root is reached within `max_distance` of p; `h` is the
+/// finite-difference step. Used to measure the gap between sharp-feature
+/// polylines and the implicit surface (thesis 7.5, Fig. 7.18).
+bool project_onto_surface(const ImplicitSurface& surface, const Vec3& p, double max_step, double max_distance, double h,
+                          Vec3& projection);
+
 /// Poisson surface reconstruction (Kazhdan et al. 2006) by CGAL's
 /// Poisson_reconstruction_function. Needs oriented normals.
 struct PoissonOptions {

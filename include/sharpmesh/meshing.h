@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "sharpmesh/implicit.h"
 #include "sharpmesh/progress.h"
@@ -23,19 +24,59 @@ struct RefinementCriteria {
   static RefinementCriteria from_spacing(double d_prime);
 };
 
+/// Protecting balls on sharp-feature polylines (7.3.2). Balls are placed by
+/// CGAL's Mesh_3 protection, which keeps consecutive balls overlapping and
+/// shrinks balls where non-consecutive ones would intersect; the centre
+/// spacing follows the radius.
+struct FeatureProtection {
+  /// Polylines to keep as chains of mesh edges; closed when front() == back().
+  /// Polylines meeting at a shared end point make a corner there.
+  std::vector<Polyline> polylines;
+  double ball_radius = 0.0;  ///< data units; the thesis's 2/3 d' (7.3.2)
+  /// Beyond the thesis (its future work, 8.2): grow a ball to reach the
+  /// implicit surface where the polyline lies off it (the gap of Fig. 7.18):
+  /// radius = max(ball_radius, gap_margin x gap), up to max_ball_radius.
+  bool adapt_to_gap = true;
+  double gap_margin = 1.5;
+  double max_ball_radius = 0.0;  ///< data units; 0: 3 x ball_radius
+};
+
+/// A stretch of a protected polyline that the output mesh does not follow
+/// (its balls miss the implicit surface).
+struct UncoveredGap {
+  Vec3 center{0, 0, 0};  ///< midpoint of the stretch
+  double length = 0;     ///< length of the stretch
+  double gap = 0;        ///< largest polyline-to-surface distance on it (-1: not found)
+};
+
 struct ImplicitMeshingOptions {
   RefinementCriteria criteria;
+  FeatureProtection features;
   /// Refuse to start when the estimated facet count is above this (0: no limit).
   std::size_t max_facets = 5'000'000;
   std::uint32_t seed = 0;
   void check() const;
 };
 
-/// Meshes the zero level set of `surface` inside its bounding sphere. The
-/// result is the boundary of the meshed volume: closed and, with the manifold
-/// option of CGAL's Mesh_3, manifold.
-SurfaceMesh mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
-                                  const Progress& progress = {});
+struct ImplicitMeshingResult {
+  SurfaceMesh mesh;
+  /// Mesh edges that represent protected polylines, chained into polylines.
+  std::vector<Polyline> feature_edges;
+  std::size_t protecting_balls = 0;      ///< corner and edge balls
+  std::size_t enlarged_balls = 0;        ///< balls grown to reach the surface
+  std::size_t protected_segments = 0;    ///< segments between consecutive balls
+  std::size_t represented_segments = 0;  ///< of those, edges of the output mesh
+  double max_gap = 0;                    ///< largest polyline-to-surface distance measured at a ball
+  std::vector<UncoveredGap> uncovered;
+};
+
+/// Meshes the zero level set of `surface` inside its bounding sphere by
+/// Delaunay refinement (6.2.1), with the polylines of `options.features`
+/// protected by weighted points (7.3.2). The result is the boundary of the
+/// meshed volume: closed and, with the manifold option of CGAL's Mesh_3,
+/// manifold.
+ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
+                                            const Progress& progress = {});
 
 /// Rough facet count of a mesh with the given criteria on a surface of the
 /// given area (equilateral facets of edge `edge_length`, halved to account

@@ -1,11 +1,14 @@
-// The point-cloud-to-mesh pipeline of Chapter 7. The PIF baseline (7.3.1):
-// normals (if missing), Poisson implicit function, Delaunay refinement with
-// the 7.3.2 criteria derived from one parameter delta.
+// The point-cloud-to-mesh pipeline of Chapter 7: sharp features (7.2),
+// normals (if missing; CVCM normals, 7.4), Poisson implicit function, and
+// Delaunay refinement with the 7.3.2 criteria derived from one parameter
+// delta, the feature polylines protected by weighted points. Without
+// features it is the thesis's PIF baseline (7.3.1).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "sharpmesh/features.h"
 #include "sharpmesh/meshing.h"
 #include "sharpmesh/pointset.h"
 #include "sharpmesh/progress.h"
@@ -14,9 +17,29 @@
 
 namespace sharpmesh {
 
+/// Where unoriented normals come from when the input has none.
+enum class NormalSource {
+  Automatic,  ///< CVCM when features are extracted, else jet fitting
+  Cvcm,       ///< eigenvector of the largest eigenvalue of the convolved VCM (7.4)
+  Estimated,  ///< PCA or jet fitting over k neighbours (App. A.7), see `normals`
+};
+
+/// Which sharp features to protect.
+enum class FeatureMode {
+  Extract,  ///< extract them from the cloud (7.2)
+  Given,    ///< use `given_features`
+  None,     ///< the PIF baseline (7.3.1)
+};
+
 struct ReconstructOptions {
   double delta = 3.5;  ///< d' = delta * avg (7.3.2; Fig. 7.10a)
   int spacing_k = 6;   ///< avg = mean distance to the 6 nearest neighbours (7.3.2)
+  FeatureMode feature_mode = FeatureMode::Extract;
+  FeatureOptions features;               ///< used with FeatureMode::Extract
+  std::vector<Polyline> given_features;  ///< used with FeatureMode::Given
+  double ball_radius = 2.0 / 3.0;        ///< protecting-ball radius, fraction of d' (7.3.2)
+  bool adapt_balls_to_gap = true;        ///< grow balls to reach the implicit surface (beyond the thesis)
+  NormalSource normal_source = NormalSource::Automatic;
   NormalEstimationOptions normals;       ///< used when the input has no normals
   NormalOrientationOptions orientation;  ///< used when the input has no normals
   bool recompute_normals = false;        ///< ignore normals present in the input
@@ -34,6 +57,9 @@ struct ReconstructResult {
   std::size_t input_points = 0;
   std::size_t used_points = 0;       ///< after removing unorientable points
   bool normals_estimated = false;
+  std::string normal_source;         ///< "input", "cvcm", "jet" or "pca"
+  FeatureResult features;            ///< when extracted (graph only when given)
+  ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   std::vector<StageTiming> stages;
 };
 

@@ -40,6 +40,39 @@ inline std::vector<EdgeIncidence> edge_incidences(const SurfaceMesh& mesh) {
   return edges;
 }
 
+using VertexAdjacency = std::vector<std::vector<std::uint32_t>>;
+
+/// Chains the edges of a graph on mesh vertices into polylines that run
+/// between vertices whose degree is not 2; what remains are closed loops
+/// (front() == back()).
+inline std::vector<Polyline> chain_edges(const std::vector<Vec3>& vertices, const VertexAdjacency& adjacency) {
+  std::vector<Polyline> polylines;
+  std::unordered_map<std::uint64_t, bool> used;
+  auto walk = [&](std::uint32_t start, std::uint32_t next) {
+    Polyline line{vertices[start]};
+    std::uint32_t previous = start, current = next;
+    used[edge_key(previous, current)] = true;
+    while (true) {
+      line.push_back(vertices[current]);
+      if (adjacency[current].size() != 2 || current == start) break;
+      const std::uint32_t following = adjacency[current][0] == previous ? adjacency[current][1] : adjacency[current][0];
+      if (used[edge_key(current, following)]) break;
+      used[edge_key(current, following)] = true;
+      previous = current;
+      current = following;
+    }
+    polylines.push_back(std::move(line));
+  };
+  for (std::uint32_t v = 0; v < adjacency.size(); ++v)
+    if (!adjacency[v].empty() && adjacency[v].size() != 2)
+      for (std::uint32_t w : adjacency[v])
+        if (!used[edge_key(v, w)]) walk(v, w);
+  for (std::uint32_t v = 0; v < adjacency.size(); ++v)  // remaining: closed loops
+    for (std::uint32_t w : adjacency[v])
+      if (!used[edge_key(v, w)]) walk(v, w);
+  return polylines;
+}
+
 /// Union-find with path halving.
 class DisjointSets {
  public:

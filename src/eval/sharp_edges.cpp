@@ -19,7 +19,7 @@ std::vector<Polyline> sharp_edges(const SurfaceMesh& mesh, double angle_deg) {
   }
   // Sharp edges: two faces whose normals differ by more than the angle
   // (orientation-aware), or more than two faces (non-manifold edge).
-  std::vector<std::vector<std::uint32_t>> adjacency(mesh.vertices.size());
+  detail::VertexAdjacency adjacency(mesh.vertices.size());
   for (const auto& e : detail::edge_incidences(mesh)) {
     bool sharp = e.faces.size() > 2;
     if (e.faces.size() == 2) {
@@ -34,32 +34,7 @@ std::vector<Polyline> sharp_edges(const SurfaceMesh& mesh, double angle_deg) {
       adjacency[e.b].push_back(e.a);
     }
   }
-  // Chain edges into polylines between vertices whose sharp degree is not 2.
-  std::vector<Polyline> polylines;
-  std::unordered_map<std::uint64_t, bool> used;
-  auto walk = [&](std::uint32_t start, std::uint32_t next) {
-    Polyline line{mesh.vertices[start]};
-    std::uint32_t previous = start, current = next;
-    used[detail::edge_key(previous, current)] = true;
-    while (true) {
-      line.push_back(mesh.vertices[current]);
-      if (adjacency[current].size() != 2 || current == start) break;
-      const std::uint32_t following = adjacency[current][0] == previous ? adjacency[current][1] : adjacency[current][0];
-      if (used[detail::edge_key(current, following)]) break;
-      used[detail::edge_key(current, following)] = true;
-      previous = current;
-      current = following;
-    }
-    polylines.push_back(std::move(line));
-  };
-  for (std::uint32_t v = 0; v < adjacency.size(); ++v)
-    if (!adjacency[v].empty() && adjacency[v].size() != 2)
-      for (std::uint32_t w : adjacency[v])
-        if (!used[detail::edge_key(v, w)]) walk(v, w);
-  for (std::uint32_t v = 0; v < adjacency.size(); ++v)  // remaining: closed loops
-    for (std::uint32_t w : adjacency[v])
-      if (!used[detail::edge_key(v, w)]) walk(v, w);
-  return polylines;
+  return detail::chain_edges(mesh.vertices, adjacency);
 }
 
 }  // namespace sharpmesh

@@ -5,6 +5,8 @@
 // 7.3.2 need): two ends of one long polyline close a loop; two collinear ends
 // are joined into one polyline instead of a false cusp; a polyline passing
 // through a junction is split there.
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -67,6 +69,43 @@ Vec3 junction_position(const std::vector<End>& ends, double radius) {
   return count ? (1.0 / count) * sum : center;
 }
 
+// Least-squares meeting point of the ends' lines (pulled slightly towards
+// their centroid so that parallel lines have one).
+Vec3 meeting_point(const std::vector<const End*>& group) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero(), centroid = Eigen::Vector3d::Zero();
+  for (const End* e : group) centroid += Eigen::Vector3d(e->position[0], e->position[1], e->position[2]);
+  centroid /= static_cast<double>(group.size());
+  for (const End* e : group) {
+    Eigen::Vector3d u(e->outward[0], e->outward[1], e->outward[2]);
+    u.normalize();
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
+    A += P;
+    rhs += P * Eigen::Vector3d(e->position[0], e->position[1], e->position[2]);
+  }
+  const double eps = 1e-3 * static_cast<double>(group.size());
+  A += eps * Eigen::Matrix3d::Identity();
+  rhs += eps * centroid;
+  const Eigen::Vector3d p = A.ldlt().solve(rhs);
+  return {p(0), p(1), p(2)};
+}
+
+// Whether ends within r of each other point at one junction: the lines of
+// all of them pass within r/3 of their meeting point, which lies within r
+// of every end. Grouping ends by distance alone chains the ends of two
+// parallel edges a short edge apart (two corners of one small face) into
+// one junction far from both corners.
+bool group_meets(const std::vector<const End*>& group, double r) {
+  if (group.size() < 2) return true;
+  const Vec3 p = meeting_point(group);
+  for (const End* e : group) {
+    const Vec3 u = (1.0 / norm(e->outward)) * e->outward;
+    const Vec3 offset = p - e->position;
+    if (norm(offset - dot(offset, u) * u) >= r / 3 || distance(p, e->position) >= r) return false;
+  }
+  return true;
+}
+
 void set_end(TracedPolyline& line, bool back, const Vec3& p) {
   if (back) line.vertices.back() = p;
   else line.vertices.front() = p;
@@ -84,17 +123,43 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor)
   }
   // Group ends within r_junc of each other; the two ends of one polyline are
   // only grouped when the polyline is long enough to be a loop.
-  DisjointSets groups(ends.size());
+  // Closest pairs first; two groups merge only when all their ends still
+  // meet at one point.
+  struct Pair { double d; std::size_t a, b; };
+  std::vector<Pair> pairs;
   for (std::size_t a = 0; a < ends.size(); ++a)
     for (std::size_t b = a + 1; b < ends.size(); ++b) {
-      const double r = std::max(ends[a].r_junc, ends[b].r_junc);
-      if (distance(ends[a].position, ends[b].position) >= r) continue;
-      if (ends[a].polyline == ends[b].polyline) {
-        // A loop closes only when the polyline is long and its ends face each other.
-        if (lines[ends[a].polyline].length() < 10 * r || dot(ends[a].outward, ends[b].outward) > -0.5) continue;
-      }
-      groups.unite(a, b);
+      const double d = distance(ends[a].position, ends[b].position);
+      if (d < std::max(ends[a].r_junc, ends[b].r_junc)) pairs.push_back({d, a, b});
     }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) { return x.d < y.d; });
+  DisjointSets groups(ends.size());
+  std::map<std::size_t, std::vector<std::size_t>> group_of;
+  for (std::size_t a = 0; a < ends.size(); ++a) group_of[a] = {a};
+  for (const Pair& pair : pairs) {
+    const std::size_t a = pair.a, b = pair.b, ga = groups.find(a), gb = groups.find(b);
+    if (ga == gb) continue;
+    if (ends[a].polyline == ends[b].polyline) {
+      // A loop closes only when the polyline is long and its ends face each other.
+      const double r = std::max(ends[a].r_junc, ends[b].r_junc);
+      if (lines[ends[a].polyline].length() < 10 * r || dot(ends[a].outward, ends[b].outward) > -0.5) continue;
+    }
+    std::vector<const End*> merged;
+    double r = 0;
+    for (std::size_t g : {ga, gb})
+      for (std::size_t e : group_of[g]) {
+        merged.push_back(&ends[e]);
+        r = std::max(r, ends[e].r_junc);
+      }
+    const bool loop = merged.size() == 2 && merged[0]->polyline == merged[1]->polyline;
+    if (!loop && !group_meets(merged, r)) continue;
+    groups.unite(a, b);
+    const std::size_t root = groups.find(a), other = root == ga ? gb : ga;
+    std::vector<std::size_t> members_of_root = group_of[ga];
+    members_of_root.insert(members_of_root.end(), group_of[gb].begin(), group_of[gb].end());
+    group_of.erase(other);
+    group_of[root] = std::move(members_of_root);
+  }
   std::map<std::size_t, std::vector<std::size_t>> members;
   for (std::size_t a = 0; a < ends.size(); ++a) members[groups.find(a)].push_back(a);
 
@@ -164,7 +229,7 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor)
     for (std::size_t li = 0; li < kept.size(); ++li) {
       TracedPolyline& line = kept[li];
       std::size_t best = 0;
-      double best_d = node.radius;
+      double best_d = node.radius / 3;  // as close as the end lines of one junction (group_meets)
       for (std::size_t v = 1; v + 1 < line.vertices.size(); ++v) {
         const double d = distance(line.vertices[v], node.position);
         if (d < best_d) {

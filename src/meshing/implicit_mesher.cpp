@@ -1,17 +1,26 @@
 // Delaunay refinement of an implicit surface (Boissonnat & Oudot 2005; thesis
-// 6.2.1, 7.3.1) with CGAL's Mesh_3: facet criteria only, the surface facets of
-// the complex are the output.
+// 6.2.1, 7.3) with CGAL's Mesh_3: facet criteria only, the surface facets of
+// the complex are the output. Sharp-feature polylines are protected by
+// weighted points (7.3.2) placed by Mesh_3's edge protection, with a ball
+// size that grows where the polyline lies off the implicit surface (the gap
+// of 7.5, Fig. 7.18; the thesis's future work in 8.2).
 #include <CGAL/Labeled_mesh_domain_3.h>
+#include <CGAL/Mesh_3/Mesher_3.h>
+#include <CGAL/Mesh_3/Protect_edges_sizing_field.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_domain_with_polyline_features_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/facets_in_complex_3_to_triangle_mesh.h>
-#include <CGAL/make_mesh_3.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <unordered_set>
 
+#include "eval/mesh_graph.h"
 #include "pointset/cgal_bridge.h"
 #include "sharpmesh/meshing.h"
 
@@ -19,10 +28,150 @@ namespace sharpmesh {
 namespace {
 
 using detail::Kernel;
-using Domain = CGAL::Labeled_mesh_domain_3<Kernel>;
+using Domain = CGAL::Mesh_domain_with_polyline_features_3<CGAL::Labeled_mesh_domain_3<Kernel>>;
 using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
-using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
+using Vertex_handle = Tr::Vertex_handle;
+
+/// Radius of the protecting ball at a point of a feature: the thesis's
+/// 2/3 d', grown to gap_margin x the distance to the implicit surface.
+struct BallSizing {
+  const ImplicitSurface* surface = nullptr;
+  FeatureProtection protection;
+  double max_radius = 0;
+
+  double gap_at(const Vec3& p) const {
+    Vec3 q;
+    const double h = 1e-3 * protection.ball_radius;
+    if (!project_onto_surface(*surface, p, 0.5 * protection.ball_radius, 4 * max_radius, h, q)) return -1;
+    return distance(p, q);
+  }
+  double operator()(const detail::Point3& p, int, const Domain::Index&) const {
+    if (!protection.adapt_to_gap) return protection.ball_radius;
+    const double gap = gap_at(detail::from_cgal(p));
+    if (gap < 0) return protection.ball_radius;
+    return std::clamp(protection.gap_margin * gap, protection.ball_radius, max_radius);
+  }
+};
+
+/// Consecutive duplicates removed; polylines with fewer than two distinct
+/// points (or closed loops with fewer than three) dropped, and so are
+/// repeated polylines (CGAL's protection fails on overlapping curves).
+std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Polyline>& polylines) {
+  std::vector<std::vector<detail::Point3>> out;
+  for (const Polyline& line : polylines) {
+    std::vector<detail::Point3> points;
+    for (const Vec3& p : line) {
+      for (double c : p)
+        if (!std::isfinite(c)) throw InvalidInput("a feature polyline has a non-finite coordinate");
+      if (points.empty() || detail::from_cgal(points.back()) != p) points.push_back(detail::to_cgal(p));
+    }
+    const bool closed = points.size() > 1 && points.front() == points.back();
+    if (points.size() < (closed ? 4u : 2u)) continue;
+    std::vector<detail::Point3> reversed(points.rbegin(), points.rend());
+    if (std::find(out.begin(), out.end(), points) != out.end() || std::find(out.begin(), out.end(), reversed) != out.end()) continue;
+    out.push_back(std::move(points));
+  }
+  return out;
+}
+
+/// Surface seeds for components the protecting balls do not reach: the
+/// domain's initial points outside every ball.
+void insert_surface_seeds(C3t3& c3t3, const Domain& domain) {
+  std::vector<std::pair<detail::Point3, double>> balls;
+  for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v)
+    balls.emplace_back(c3t3.triangulation().point(v).point(), c3t3.triangulation().point(v).weight());
+  std::vector<std::pair<detail::Point3, Domain::Index>> seeds;
+  domain.construct_initial_points_object()(std::back_inserter(seeds));
+  for (const auto& [p, index] : seeds) {
+    const bool covered = std::any_of(balls.begin(), balls.end(), [&p = p](const auto& ball) {
+      return CGAL::squared_distance(p, ball.first) <= 4 * ball.second;
+    });
+    if (covered) continue;
+    const Vertex_handle v = c3t3.triangulation().insert(Tr::Weighted_point(p, 0));
+    if (v == Vertex_handle()) continue;
+    c3t3.set_dimension(v, 2);
+    c3t3.set_index(v, index);
+  }
+}
+
+using PointKey = std::array<double, 3>;
+
+SurfaceMesh to_surface_mesh(const C3t3& c3t3, std::map<PointKey, std::uint32_t>& index_of) {
+  CGAL::Surface_mesh<detail::Point3> sm;
+  CGAL::facets_in_complex_3_to_triangle_mesh(c3t3, sm);
+  SurfaceMesh out;
+  out.vertices.reserve(sm.number_of_vertices());
+  for (auto v : sm.vertices()) {
+    out.vertices.push_back(detail::from_cgal(sm.point(v)));
+    index_of.emplace(out.vertices.back(), static_cast<std::uint32_t>(out.vertices.size() - 1));
+  }
+  out.faces.reserve(sm.number_of_faces());
+  for (auto f : sm.faces()) {
+    Triangle t{};
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+      if (k < 3) t[k] = static_cast<std::uint32_t>(v.idx());
+      ++k;
+    }
+    if (k == 3) out.faces.push_back(t);
+  }
+  return out;
+}
+
+/// Which protected segments (complex edges between consecutive balls) are
+/// edges of the output mesh; the represented ones chained into polylines,
+/// the others grouped into uncovered stretches.
+void check_features(const C3t3& c3t3, const SurfaceMesh& mesh, const std::map<PointKey, std::uint32_t>& index_of,
+                    const BallSizing& sizing, ImplicitMeshingResult& result) {
+  std::unordered_set<std::uint64_t> mesh_edges;
+  for (const Triangle& t : mesh.faces)
+    for (int k = 0; k < 3; ++k) mesh_edges.insert(detail::edge_key(t[k], t[(k + 1) % 3]));
+  detail::VertexAdjacency adjacency(mesh.vertices.size());
+  std::vector<std::pair<Vec3, Vec3>> missing;
+  for (auto e = c3t3.edges_in_complex_begin(); e != c3t3.edges_in_complex_end(); ++e) {
+    ++result.protected_segments;
+    const Vec3 a = detail::from_cgal(e->first->vertex(e->second)->point().point());
+    const Vec3 b = detail::from_cgal(e->first->vertex(e->third)->point().point());
+    const auto ia = index_of.find(a), ib = index_of.find(b);
+    if (ia != index_of.end() && ib != index_of.end() && mesh_edges.count(detail::edge_key(ia->second, ib->second))) {
+      ++result.represented_segments;
+      adjacency[ia->second].push_back(ib->second);
+      adjacency[ib->second].push_back(ia->second);
+    } else {
+      missing.emplace_back(a, b);
+    }
+  }
+  result.feature_edges = detail::chain_edges(mesh.vertices, adjacency);
+
+  // Group missing segments that share end points into stretches.
+  std::map<PointKey, std::size_t> end_of;
+  detail::DisjointSets sets(missing.size());
+  for (std::size_t i = 0; i < missing.size(); ++i)
+    for (const Vec3& p : {missing[i].first, missing[i].second}) {
+      auto [it, inserted] = end_of.emplace(p, i);
+      if (!inserted) sets.unite(i, it->second);
+    }
+  std::map<std::size_t, UncoveredGap> stretches;
+  std::map<std::size_t, Vec3> sums;
+  std::map<std::size_t, int> counts;
+  for (std::size_t i = 0; i < missing.size(); ++i) {
+    const std::size_t root = sets.find(i);
+    UncoveredGap& gap = stretches[root];
+    gap.length += distance(missing[i].first, missing[i].second);
+    const Vec3 mid = 0.5 * (missing[i].first + missing[i].second);
+    sums[root] = sums.count(root) ? sums[root] + mid : mid;
+    ++counts[root];
+    gap.gap = std::max(gap.gap, sizing.surface ? sizing.gap_at(mid) : -1.0);
+  }
+  for (auto& [root, gap] : stretches) {
+    gap.center = (1.0 / counts[root]) * sums[root];
+    result.uncovered.push_back(gap);
+  }
+  std::sort(result.uncovered.begin(), result.uncovered.end(),
+            [](const UncoveredGap& x, const UncoveredGap& y) { return x.length > y.length; });
+}
 
 }  // namespace
 
@@ -43,7 +192,17 @@ RefinementCriteria RefinementCriteria::from_spacing(double d_prime) {
   return c;
 }
 
-void ImplicitMeshingOptions::check() const { criteria.check(); }
+void ImplicitMeshingOptions::check() const {
+  criteria.check();
+  if (!features.polylines.empty()) {
+    if (!(features.ball_radius > 0) || !std::isfinite(features.ball_radius))
+      throw InvalidArgument("protecting-ball radius must be positive (got " + std::to_string(features.ball_radius) + ")");
+    if (!(features.gap_margin >= 1) || !std::isfinite(features.gap_margin))
+      throw InvalidArgument("gap margin must be at least 1 (got " + std::to_string(features.gap_margin) + ")");
+    if (features.max_ball_radius != 0 && !(features.max_ball_radius >= features.ball_radius))
+      throw InvalidArgument("maximum ball radius must be at least the ball radius");
+  }
+}
 
 double estimate_facet_count(double area, const RefinementCriteria& criteria) {
   // Equilateral facets of edge l/2 .. l; take the geometric middle.
@@ -51,7 +210,8 @@ double estimate_facet_count(double area, const RefinementCriteria& criteria) {
   return area / (std::sqrt(3.0) / 4.0 * edge * edge);
 }
 
-SurfaceMesh mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options, const Progress& progress) {
+ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
+                                            const Progress& progress) {
   options.check();
   const double radius = surface.bounding_radius();
   if (!(radius > 0)) throw InvalidInput("implicit surface has an empty bounding sphere");
@@ -68,33 +228,60 @@ SurfaceMesh mesh_implicit_surface(const ImplicitSurface& surface, const Implicit
   };
   CGAL::Random rng(options.seed);
   namespace params = CGAL::parameters;
-  Domain domain = Domain::create_implicit_mesh_domain(
-      function, Kernel::Sphere_3(center, domain_radius * domain_radius),
-      params::relative_error_bound = 1e-6, params::p_rng = &rng);
-  // The surface Delaunay ball radius bounds edges: radius <= l/2 gives edges <= l.
-  Criteria criteria(params::facet_angle = options.criteria.angle, params::facet_size = options.criteria.edge_length / 2.0,
-                    params::facet_distance = options.criteria.distance);
-  report_progress(progress, "refinement", 0.0);
-  C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(), params::manifold());
-  report_progress(progress, "refinement", 1.0);
+  Domain domain(CGAL::Labeled_mesh_domain_3<Kernel>::create_implicit_mesh_domain(
+      function, Kernel::Sphere_3(center, domain_radius * domain_radius), params::relative_error_bound = 1e-6,
+      params::p_rng = &rng));
+  const auto polylines = feature_polylines(options.features.polylines);
+  domain.add_features(polylines.begin(), polylines.end());
 
-  CGAL::Surface_mesh<detail::Point3> sm;
-  CGAL::facets_in_complex_3_to_triangle_mesh(c3t3, sm);
-  SurfaceMesh out;
-  out.vertices.reserve(sm.number_of_vertices());
-  for (auto v : sm.vertices()) out.vertices.push_back(detail::from_cgal(sm.point(v)));
-  out.faces.reserve(sm.number_of_faces());
-  for (auto f : sm.faces()) {
-    Triangle t{};
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
-      if (k < 3) t[k] = static_cast<std::uint32_t>(v.idx());
-      ++k;
+  BallSizing sizing;
+  sizing.surface = &surface;
+  sizing.protection = options.features;
+  sizing.max_radius = options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius;
+  // The surface Delaunay ball radius bounds edges: radius <= l/2 gives edges <= l.
+  Criteria criteria(params::edge_size = sizing, params::facet_angle = options.criteria.angle,
+                    params::facet_size = options.criteria.edge_length / 2.0,
+                    params::facet_distance = options.criteria.distance);
+  ImplicitMeshingResult result;
+  // A facet has about half a vertex: a budget of 1.5x the facet limit in
+  // vertices stops a run whose estimate was far too low.
+  const std::size_t max_vertices = options.max_facets > 0 ? options.max_facets * 3 / 4 + 1000 : 0;
+  CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
+  C3t3 c3t3;
+  if (!polylines.empty()) {
+    report_progress(progress, "protecting balls", 0.0);
+    // Balls that must shrink below this are kept (CGAL's "special balls")
+    // instead of shrinking forever where two extracted polylines cross.
+    const double minimal_radius = 0.05 * options.features.ball_radius;
+    CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, sizing, minimal_radius,
+                                                                                max_vertices, &error);
+    protect(true);
+    for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v) {
+      if (c3t3.in_dimension(v) > 1) continue;
+      ++result.protecting_balls;
+      const double r = std::sqrt(c3t3.triangulation().point(v).weight());
+      if (r > 1.01 * options.features.ball_radius) ++result.enlarged_balls;
+      const double gap = sizing.gap_at(detail::from_cgal(c3t3.triangulation().point(v).point()));
+      result.max_gap = std::max(result.max_gap, gap);
     }
-    if (k == 3) out.faces.push_back(t);
+    report_progress(progress, "protecting balls", 1.0);
   }
-  if (out.faces.empty()) throw NumericalFailure("Delaunay refinement produced no surface facets (is the implicit surface empty?)");
-  return out;
+  insert_surface_seeds(c3t3, domain);
+
+  report_progress(progress, "refinement", 0.0);
+  CGAL::Mesh_3::Mesher_3<C3t3, Criteria, Domain> mesher(c3t3, domain, criteria, CGAL::MANIFOLD, max_vertices, &error);
+  mesher.refine_mesh();
+  c3t3.clear_manifold_info();
+  report_progress(progress, "refinement", 1.0);
+  if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED)
+    throw NumericalFailure("Delaunay refinement reached the vertex budget of " + std::to_string(max_vertices) +
+                           " (raise --max-facets or delta)");
+
+  std::map<PointKey, std::uint32_t> index_of;
+  result.mesh = to_surface_mesh(c3t3, index_of);
+  if (result.mesh.faces.empty()) throw NumericalFailure("Delaunay refinement produced no surface facets (is the implicit surface empty?)");
+  if (!polylines.empty()) check_features(c3t3, result.mesh, index_of, sizing, result);
+  return result;
 }
 
 }  // namespace sharpmesh

@@ -1,5 +1,6 @@
-// The Chapter 7 pipeline, PIF baseline (7.3.1): normals, Poisson implicit
-// function, Delaunay refinement with the 7.3.2 criteria.
+// The Chapter 7 pipeline: features (7.2), normals (7.4), Poisson implicit
+// function, Delaunay refinement with protecting balls (7.3.2); without
+// features the PIF baseline (7.3.1).
 #include "sharpmesh/reconstruct.h"
 
 #include <cmath>
@@ -12,6 +13,9 @@ namespace sharpmesh {
 void ReconstructOptions::check(std::size_t n) const {
   if (!(delta > 0) || !std::isfinite(delta))
     throw InvalidArgument("delta must be positive (got " + std::to_string(delta) + ")");
+  if (!(ball_radius > 0 && ball_radius <= 2))
+    throw InvalidArgument("ball radius is a fraction of d' in (0, 2] (got " + std::to_string(ball_radius) + ")");
+  if (feature_mode == FeatureMode::Extract) features.check();
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
     throw InvalidArgument("spacing k = " + std::to_string(spacing_k) + " needs more than k points, the set has " + std::to_string(n));
 }
@@ -42,12 +46,32 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
     throw InvalidArgument("delta = " + std::to_string(options.delta) + " would give about " + std::to_string(static_cast<long long>(estimate)) +
                           " facets, above the limit of " + std::to_string(options.max_facets) + " (raise delta or --max-facets)");
 
+  if (options.feature_mode == FeatureMode::Extract) {
+    result.features = extract_features(input, options.features, progress);
+    result.stages.insert(result.stages.end(), result.features.stages.begin(), result.features.stages.end());
+  } else if (options.feature_mode == FeatureMode::Given) {
+    result.features.graph.polylines = options.given_features;
+  }
+
   PointSet oriented = input;
   if (!input.has_normals() || options.recompute_normals) {
     StageTimer timer(result.stages, "normals");
-    estimate_normals(oriented, options.normals, progress);
+    const bool cvcm = options.normal_source == NormalSource::Cvcm ||
+                      (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
+    if (cvcm) {
+      if (options.feature_mode != FeatureMode::Extract)
+        throw InvalidArgument("CVCM normals need feature extraction (they come from its covariance measure)");
+      oriented.normals.resize(input.size());
+      for (std::size_t i = 0; i < input.size(); ++i) oriented.normals[i] = result.features.points[i].normal;
+      result.normal_source = "cvcm";
+    } else {
+      estimate_normals(oriented, options.normals, progress);
+      result.normal_source = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
+    }
     orient_normals_mst(oriented, options.orientation, progress);
     result.normals_estimated = true;
+  } else {
+    result.normal_source = "input";
   }
   result.used_points = oriented.size();
 
@@ -62,7 +86,12 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
     meshing.criteria = result.criteria;
     meshing.max_facets = options.max_facets;
     meshing.seed = options.seed;
-    result.mesh = mesh_implicit_surface(*surface, meshing, progress);
+    meshing.features.polylines = result.features.graph.polylines;
+    meshing.features.ball_radius = options.ball_radius * result.d_prime;
+    meshing.features.adapt_to_gap = options.adapt_balls_to_gap;
+    result.meshing = mesh_implicit_surface(*surface, meshing, progress);
+    result.mesh = std::move(result.meshing.mesh);
+    result.meshing.mesh = {};
   }
   return result;
 }
