@@ -50,6 +50,9 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_option("--ball-radius", o->reconstruct.ball_radius, "Protecting-ball radius, fraction of d' (7.3.2)")->capture_default_str();
   sub->add_flag("--fixed-balls", o->fixed_balls,
                 "Keep every ball at --ball-radius (the thesis) instead of growing it to reach the implicit surface");
+  sub->add_option("--trim", o->reconstruct.trim_distance,
+                  "Remove facets farther than TRIM x d' + 2 avg from every input point, so open scans give open meshes (0: keep the closed Poisson surface)")
+      ->capture_default_str();
   sub->add_option("--normals", o->normals, "Normals when the input has none: auto (cvcm with features, else jet), cvcm, jet or pca")
       ->check(CLI::IsMember({"auto", "cvcm", "pca", "jet"}))
       ->capture_default_str();
@@ -102,6 +105,9 @@ Command add_reconstruct(CLI::App& app) {
     if (!common->quiet) {
       printer.message("reconstruct: " + std::to_string(result.input_points) + " points -> " + std::to_string(result.mesh.faces.size()) +
                       " facets, " + std::to_string(result.mesh.vertices.size()) + " vertices -> " + o->output);
+      if (result.trimmed_facets > 0)
+        printer.message("  open surface: " + std::to_string(result.trimmed_facets) + " facets far from the data removed, " +
+                        std::to_string(result.boundary_edges) + " boundary edges");
       if (options.feature_mode != FeatureMode::None) {
         char line[200];
         std::snprintf(line, sizeof line, "  features: %zu polylines, %zu balls (%zu grown), %zu/%zu segments are mesh edges, %zu uncovered gaps",
@@ -122,7 +128,8 @@ Command add_reconstruct(CLI::App& app) {
         {"parameters",
          {{"features", o->no_features ? "none" : o->features_file.empty() ? "extract" : o->features_file},
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
-          {"adapt_balls_to_gap", options.adapt_balls_to_gap}, {"normals", o->normals}, {"normal_k", options.normals.k},
+          {"adapt_balls_to_gap", options.adapt_balls_to_gap},
+          {"trim", options.trim_distance}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",
@@ -136,7 +143,8 @@ Command add_reconstruct(CLI::App& app) {
         {"counts",
          {{"input_points", result.input_points}, {"points_used", result.used_points},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source},
-          {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()}}},
+          {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
+          {"trimmed_facets", result.trimmed_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);

@@ -32,6 +32,13 @@ Vec3 implicit_gradient(const ImplicitSurface& surface, const Vec3& p, double h);
 bool project_onto_surface(const ImplicitSurface& surface, const Vec3& p, double max_step, double max_distance, double h,
                           Vec3& projection);
 
+/// The surface restricted to the neighbourhood of the data: farther than
+/// `max_distance` from every point of `points` the function is positive
+/// (outside), so an implicit function that invents surface away from the data
+/// (Poisson closing an open scan) is cut there. Beyond the thesis (8.2).
+std::unique_ptr<ImplicitSurface> restrict_to_points(std::unique_ptr<ImplicitSurface> surface, const std::vector<Vec3>& points,
+                                                    double max_distance);
+
 /// Poisson surface reconstruction (Kazhdan et al. 2006) by CGAL's
 /// Poisson_reconstruction_function. Needs oriented normals.
 struct PoissonOptions {

@@ -54,6 +54,10 @@ struct ImplicitMeshingOptions {
   FeatureProtection features;
   /// Refuse to start when the estimated facet count is above this (0: no limit).
   std::size_t max_facets = 5'000'000;
+  /// Facets the data suggests (0: unknown). Refinement stops with an error
+  /// past 8x this many facets: the implicit surface is then far larger than
+  /// the data (inconsistent normals, an open or thin surface).
+  double expected_facets = 0;
   std::uint32_t seed = 0;
   void check() const;
 };
@@ -77,6 +81,15 @@ struct ImplicitMeshingResult {
 /// manifold.
 ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
                                             const Progress& progress = {});
+
+/// Open surfaces (beyond the thesis): removes the facets whose centroid is
+/// farther than `max_distance` from every point of `points` (where Poisson
+/// closed a hole or an open sheet with invented surface), then the vertices
+/// no facet uses. Returns the number of facets removed.
+std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance);
+
+/// Number of mesh edges with exactly one incident facet.
+std::size_t count_boundary_edges(const SurfaceMesh& mesh);
 
 /// Rough facet count of a mesh with the given criteria on a surface of the
 /// given area (equilateral facets of edge `edge_length`, halved to account

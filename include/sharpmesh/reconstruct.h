@@ -39,6 +39,9 @@ struct ReconstructOptions {
   std::vector<Polyline> given_features;  ///< used with FeatureMode::Given
   double ball_radius = 2.0 / 3.0;        ///< protecting-ball radius, fraction of d' (7.3.2)
   bool adapt_balls_to_gap = true;        ///< grow balls to reach the implicit surface (beyond the thesis)
+  /// Open surfaces: remove facets farther than trim_distance x d' + 2 avg
+  /// from every input point (0: keep Poisson's closed surface everywhere).
+  double trim_distance = 1.0;
   NormalSource normal_source = NormalSource::Automatic;
   NormalEstimationOptions normals;       ///< used when the input has no normals
   NormalOrientationOptions orientation;  ///< used when the input has no normals
@@ -60,6 +63,8 @@ struct ReconstructResult {
   std::string normal_source;         ///< "input", "cvcm", "jet" or "pca"
   FeatureResult features;            ///< when extracted (graph only when given)
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
+  std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
+  std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
   std::vector<StageTiming> stages;
 };
 

@@ -39,36 +39,6 @@ End make_end(const TracedPolyline& line, std::size_t index, bool back, double fa
   return {index, back, back ? line.vertices.back() : line.vertices.front(), outward, factor * spacing};
 }
 
-// Closest points between lines (a + s u) and (b + t v); false when parallel.
-bool closest_points(const Vec3& a, const Vec3& u, const Vec3& b, const Vec3& v, Vec3& qa, Vec3& qb) {
-  const Vec3 w = a - b;
-  const double uu = dot(u, u), uv = dot(u, v), vv = dot(v, v), uw = dot(u, w), vw = dot(v, w);
-  const double det = uu * vv - uv * uv;
-  if (!(det > 1e-12 * uu * vv)) return false;
-  const double s = (uv * vw - vv * uw) / det, t = (uu * vw - uv * uw) / det;
-  qa = a + s * u;
-  qb = b + t * v;
-  return true;
-}
-
-Vec3 junction_position(const std::vector<End>& ends, double radius) {
-  Vec3 center{0, 0, 0};
-  for (const End& e : ends) center = center + e.position;
-  center = (1.0 / ends.size()) * center;
-  Vec3 sum{0, 0, 0};
-  int count = 0;
-  for (std::size_t i = 0; i < ends.size(); ++i)
-    for (std::size_t j = i + 1; j < ends.size(); ++j) {
-      Vec3 qi, qj;
-      if (!closest_points(ends[i].position, ends[i].outward, ends[j].position, ends[j].outward, qi, qj)) qi = qj = center;
-      for (const Vec3& q : {qi, qj}) {
-        sum = sum + (distance(q, center) <= radius ? q : center);  // points outside the ball count as the centre
-        ++count;
-      }
-    }
-  return count ? (1.0 / count) * sum : center;
-}
-
 // Least-squares meeting point of the ends' lines (pulled slightly towards
 // their centroid so that parallel lines have one).
 Vec3 meeting_point(const std::vector<const End*>& group) {
@@ -181,7 +151,12 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor)
       line.closed = true;
       continue;
     }
-    const Vec3 p = group.size() == 1 ? group[0].position : junction_position(group, radius);
+    // The junction: the point nearest to all end lines (7.2.3 takes the
+    // closest points of pairs of end lines; with three or more ends the
+    // least-squares point uses them all at once).
+    std::vector<const End*> pointers;
+    for (const End& e : group) pointers.push_back(&e);
+    const Vec3 p = group.size() == 1 ? group[0].position : meeting_point(pointers);
     for (const End& e : group) set_end(lines[e.polyline], e.back, p);
     nodes.push_back({p, radius, list});
   }

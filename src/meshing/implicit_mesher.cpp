@@ -96,6 +96,62 @@ void insert_surface_seeds(C3t3& c3t3, const Domain& domain) {
   }
 }
 
+/// Splits the polylines where they lie farther from the implicit surface
+/// than the largest ball can reach: those stretches are reported, not
+/// protected (a ball that misses the surface leaves its vertex out of the
+/// mesh, and nearby balls would pull the mesh towards a wrong polyline).
+std::vector<std::vector<detail::Point3>> coverable_parts(const std::vector<std::vector<detail::Point3>>& polylines,
+                                                         const ImplicitSurface& surface, const BallSizing& sizing,
+                                                         std::vector<UncoveredGap>& uncovered) {
+  std::vector<std::vector<detail::Point3>> parts;
+  const double reach = 0.8 * sizing.max_radius, h = 1e-3 * sizing.protection.ball_radius;
+  for (const auto& line : polylines) {
+    std::vector<double> gaps(line.size());
+    bool all = true;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      Vec3 q;
+      const Vec3 p = detail::from_cgal(line[i]);
+      gaps[i] = project_onto_surface(surface, p, 0.5 * sizing.protection.ball_radius, 2 * surface.bounding_radius(), h, q)
+                    ? distance(p, q) : -1;
+      all = all && gaps[i] >= 0 && gaps[i] <= reach;
+    }
+    if (all) {
+      parts.push_back(line);
+      continue;
+    }
+    std::vector<detail::Point3> run;
+    UncoveredGap gap;
+    Vec3 sum{0, 0, 0};
+    int count = 0;
+    auto close_gap = [&] {
+      if (count == 0) return;
+      gap.center = (1.0 / count) * sum;
+      uncovered.push_back(gap);
+      gap = {};
+      sum = {0, 0, 0};
+      count = 0;
+    };
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const bool ok = gaps[i] >= 0 && gaps[i] <= reach;
+      if (ok) {
+        close_gap();
+        run.push_back(line[i]);
+        continue;
+      }
+      if (run.size() >= 2) parts.push_back(run);
+      run.clear();
+      sum = sum + detail::from_cgal(line[i]);
+      ++count;
+      gap.gap = gaps[i] < 0 ? -1 : std::max(gap.gap, gaps[i]);
+      if (i > 0) gap.length += 0.5 * std::sqrt(CGAL::squared_distance(line[i - 1], line[i]));
+      if (i + 1 < line.size()) gap.length += 0.5 * std::sqrt(CGAL::squared_distance(line[i], line[i + 1]));
+    }
+    close_gap();
+    if (run.size() >= 2) parts.push_back(run);
+  }
+  return parts;
+}
+
 using PointKey = std::array<double, 3>;
 
 SurfaceMesh to_surface_mesh(const C3t3& c3t3, std::map<PointKey, std::uint32_t>& index_of) {
@@ -169,8 +225,6 @@ void check_features(const C3t3& c3t3, const SurfaceMesh& mesh, const std::map<Po
     gap.center = (1.0 / counts[root]) * sums[root];
     result.uncovered.push_back(gap);
   }
-  std::sort(result.uncovered.begin(), result.uncovered.end(),
-            [](const UncoveredGap& x, const UncoveredGap& y) { return x.length > y.length; });
 }
 
 }  // namespace
@@ -231,21 +285,24 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   Domain domain(CGAL::Labeled_mesh_domain_3<Kernel>::create_implicit_mesh_domain(
       function, Kernel::Sphere_3(center, domain_radius * domain_radius), params::relative_error_bound = 1e-6,
       params::p_rng = &rng));
-  const auto polylines = feature_polylines(options.features.polylines);
-  domain.add_features(polylines.begin(), polylines.end());
-
   BallSizing sizing;
   sizing.surface = &surface;
   sizing.protection = options.features;
   sizing.max_radius = options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius;
+  ImplicitMeshingResult result;
+  const auto polylines = coverable_parts(feature_polylines(options.features.polylines), surface, sizing, result.uncovered);
+  domain.add_features(polylines.begin(), polylines.end());
+
   // The surface Delaunay ball radius bounds edges: radius <= l/2 gives edges <= l.
   Criteria criteria(params::edge_size = sizing, params::facet_angle = options.criteria.angle,
                     params::facet_size = options.criteria.edge_length / 2.0,
                     params::facet_distance = options.criteria.distance);
-  ImplicitMeshingResult result;
   // A facet has about half a vertex: a budget of 1.5x the facet limit in
   // vertices stops a run whose estimate was far too low.
-  const std::size_t max_vertices = options.max_facets > 0 ? options.max_facets * 3 / 4 + 1000 : 0;
+  std::size_t max_vertices = options.max_facets > 0 ? options.max_facets * 3 / 4 + 1000 : 0;
+  const std::size_t expected_budget = static_cast<std::size_t>(4 * options.expected_facets) + 20000;
+  const bool budget_from_data = options.expected_facets > 0 && (max_vertices == 0 || expected_budget < max_vertices);
+  if (budget_from_data) max_vertices = expected_budget;
   CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
   C3t3 c3t3;
   if (!polylines.empty()) {
@@ -273,6 +330,10 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   mesher.refine_mesh();
   c3t3.clear_manifold_info();
   report_progress(progress, "refinement", 1.0);
+  if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED && budget_from_data)
+    throw NumericalFailure("Delaunay refinement passed 8x the facet count the data suggests (" +
+                           std::to_string(static_cast<long long>(options.expected_facets)) +
+                           "): the implicit surface is far larger than the sampled one (inconsistent normals, or a thin or open surface)");
   if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED)
     throw NumericalFailure("Delaunay refinement reached the vertex budget of " + std::to_string(max_vertices) +
                            " (raise --max-facets or delta)");
@@ -281,6 +342,8 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   result.mesh = to_surface_mesh(c3t3, index_of);
   if (result.mesh.faces.empty()) throw NumericalFailure("Delaunay refinement produced no surface facets (is the implicit surface empty?)");
   if (!polylines.empty()) check_features(c3t3, result.mesh, index_of, sizing, result);
+  std::sort(result.uncovered.begin(), result.uncovered.end(),
+            [](const UncoveredGap& x, const UncoveredGap& y) { return x.length > y.length; });
   return result;
 }
 

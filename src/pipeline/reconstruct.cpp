@@ -16,6 +16,8 @@ void ReconstructOptions::check(std::size_t n) const {
   if (!(ball_radius > 0 && ball_radius <= 2))
     throw InvalidArgument("ball radius is a fraction of d' in (0, 2] (got " + std::to_string(ball_radius) + ")");
   if (feature_mode == FeatureMode::Extract) features.check();
+  if (!(trim_distance >= 0) || !std::isfinite(trim_distance))
+    throw InvalidArgument("trim distance must be >= 0 (got " + std::to_string(trim_distance) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
     throw InvalidArgument("spacing k = " + std::to_string(spacing_k) + " needs more than k points, the set has " + std::to_string(n));
 }
@@ -80,11 +82,16 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
     StageTimer timer(result.stages, "poisson");
     surface = poisson_surface(oriented, PoissonOptions{}, progress);
   }
+  const double trim_distance = options.trim_distance * result.d_prime + 2 * result.average_spacing;
+  // Open inputs: cut the implicit function at twice the trim distance, so
+  // Poisson's closing sheet is never refined; the trim removes the cut.
+  if (options.trim_distance > 0) surface = restrict_to_points(std::move(surface), input.points, 2 * trim_distance);
   {
     StageTimer timer(result.stages, "refinement");
     ImplicitMeshingOptions meshing;
     meshing.criteria = result.criteria;
     meshing.max_facets = options.max_facets;
+    meshing.expected_facets = estimate;
     meshing.seed = options.seed;
     meshing.features.polylines = result.features.graph.polylines;
     meshing.features.ball_radius = options.ball_radius * result.d_prime;
@@ -92,6 +99,13 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
     result.meshing = mesh_implicit_surface(*surface, meshing, progress);
     result.mesh = std::move(result.meshing.mesh);
     result.meshing.mesh = {};
+  }
+  if (options.trim_distance > 0) {
+    StageTimer timer(result.stages, "trim");
+    result.trimmed_facets =
+        trim_far_from_points(result.mesh, input.points, trim_distance);
+    if (result.mesh.faces.empty()) throw NumericalFailure("reconstruction: no facet of the mesh lies near the input points");
+    result.boundary_edges = count_boundary_edges(result.mesh);
   }
   return result;
 }

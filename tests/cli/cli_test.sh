@@ -69,19 +69,51 @@ e = json.load(open("e.json"))["evaluation"]
 assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
 assert e["hausdorff"]["fraction_of_diagonal"] < 0.025, e["hausdorff"]
 r = json.load(open("r.json"))
-assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "refinement", "write"], r["stages"]
+assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "refinement", "trim", "write"], r["stages"]
 PY
     ;;
-  fandisk-200k)  # the foundation's acceptance claim: PIF on fandisk at 200k points
+  reconstruct-features)  # Chapter 7 end to end: the cube's 12 edges come out as mesh edges
+    $bin sample "$data/meshes/cube.off" -n 20000 --seed 2 -o s.ply -q || fail "sample failed"
+    $bin reconstruct s.ply -o m.off --delta 5 --sharp-edges e.txt --report r.json -q || fail "reconstruct failed"
+    # Known miss (see README): on this sample one edge is traced only over two
+    # thirds of its length, so the bound is recall > 0.95, not 1.
+    $bin eval-features e.txt --reference "$data/meshes/cube.off" --json f.json -q || fail "eval-features failed"
+    $bin eval m.off --reference "$data/meshes/cube.off" --json e.json -q || fail "eval failed"
+    python3 - <<'PY' || fail "feature-preserving reconstruction out of bounds"
+import json
+f = json.load(open("f.json"))
+f = f.get("evaluation", f)
+assert f["recall"] > 0.95 and f["precision"] > 0.99, f
+e = json.load(open("e.json"))["evaluation"]
+assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
+assert e["hausdorff"]["fraction_of_diagonal"] < 0.02, e["hausdorff"]  # the missed stretch is rounded as in PIF
+r = json.load(open("r.json"))
+p = r["protection"]
+assert p["represented_fraction"] == 1.0 and p["uncovered_gaps"] == 0, p
+names = [s["name"] for s in r["stages"]]
+assert names == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "refinement", "trim", "write"], names
+assert r["counts"]["normal_source"] == "cvcm", r["counts"]
+PY
+    ;;
+  features-given)
+    $bin sample "$data/meshes/cube.off" -n 5000 --seed 2 -o s.ply -q || fail "sample failed"
+    printf '2 -1 -1 -1 1 -1 -1\n' > one.txt
+    $bin reconstruct s.ply -o m.off --features one.txt --sharp-edges e.txt -q || fail "reconstruct with given features failed"
+    [[ $(wc -l < e.txt) -eq 1 ]] || fail "one given polyline should give one feature polyline"
+    printf '2 0 0 nan 1 1 1\n' > bad.txt
+    expect_error 1 "bad.txt" "out.off" $bin reconstruct s.ply -o out.off --features bad.txt
+    expect_error 2 "excludes" "out.off" $bin reconstruct s.ply -o out.off --features one.txt --no-features ;;
+  fandisk-200k)  # acceptance claim: the Chapter 7 pipeline on fandisk at 200k points
     $bin sample "$data/meshes/fandisk.off" -n 200000 --seed 1 -o s.ply -q || fail "sample failed"
-    $bin reconstruct s.ply -o m.ply --no-features -q || fail "reconstruct failed"
+    $bin reconstruct s.ply -o m.ply -q || fail "reconstruct failed"
     $bin eval m.ply --reference "$data/meshes/fandisk.off" --json e.json -q || fail "eval failed"
     python3 - <<'PY' || fail "fandisk 200k out of bounds"
 import json
 e = json.load(open("e.json"))["evaluation"]
 t = e["topology"]
 assert t["closed"] and t["manifold"] and not t["self_intersecting"], t
-assert e["hausdorff"]["fraction_of_diagonal"] < 0.01, e["hausdorff"]
+assert e["hausdorff"]["fraction_of_diagonal"] < 0.006, e["hausdorff"]
+assert e["sharp_edges"]["mean"]["U"] < 0.2, e["sharp_edges"]
 PY
     ;;
   report-json)

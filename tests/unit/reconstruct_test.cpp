@@ -1,6 +1,10 @@
 // The PIF pipeline (7.3.1) end to end on analytic and real models.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+
 #include "fixtures.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
@@ -44,14 +48,135 @@ TEST(Reconstruct, SphereGivesAClosedManifoldMeshCloseToTheSphere) {
   EXPECT_LT(r.estimated_facets, 2.0 * r.mesh.faces.size());
 }
 
+namespace {
+
+// Dihedral angle (degrees, 180 = flat) at each mesh edge whose end points
+// are consecutive vertices of a feature polyline.
+std::vector<double> feature_dihedral_angles(const SurfaceMesh& mesh, const std::vector<Polyline>& features) {
+  std::map<std::array<double, 3>, std::uint32_t> index_of;
+  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) index_of[mesh.vertices[v]] = v;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> faces_of;
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
+      faces_of[{std::min(a, b), std::max(a, b)}].push_back(f);
+    }
+  auto normal = [&](std::uint32_t f) {
+    const Triangle& t = mesh.faces[f];
+    const Vec3 n = cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+    return (1.0 / norm(n)) * n;
+  };
+  std::vector<double> angles;
+  for (const Polyline& line : features)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const std::uint32_t a = index_of.at(line[i]), b = index_of.at(line[i + 1]);
+      const auto& faces = faces_of.at({std::min(a, b), std::max(a, b)});
+      if (faces.size() != 2) {
+        angles.push_back(-1);
+        continue;
+      }
+      angles.push_back(180.0 - std::acos(std::clamp(dot(normal(faces[0]), normal(faces[1])), -1.0, 1.0)) * 180.0 / M_PI);
+    }
+  return angles;
+}
+
+}  // namespace
+
+// Chapter 7 end to end on a cube: the 12 edges come out as chains of mesh
+// edges with right dihedral angles, meeting at 8 corner vertices.
+TEST(FeaturePreservingReconstruction, CubeKeepsTwelveSharpEdgesAndEightCorners) {
+  const SurfaceMesh cube = test::cube_mesh(1.0);
+  ReconstructOptions options;
+  options.delta = 6;
+  const ReconstructResult r = reconstruct(sample(cube, 30000), options);
+  EXPECT_EQ(r.normal_source, "cvcm");
+  ASSERT_EQ(r.features.graph.polylines.size(), 12u);
+  EXPECT_EQ(r.meshing.represented_segments, r.meshing.protected_segments);
+  EXPECT_TRUE(r.meshing.uncovered.empty());
+  EXPECT_EQ(r.boundary_edges, 0u);
+  expect_valid_and_close(r.mesh, cube, 0.005);
+  // The feature edges of the mesh: all 12 cube edges, nothing else.
+  FeatureEvalOptions eval;
+  eval.tolerance = 0.005;
+  const FeatureEvaluation e = evaluate_features(r.meshing.feature_edges, polyline_corners(r.meshing.feature_edges), cube, eval);
+  EXPECT_GT(e.recall, 0.99);
+  EXPECT_GT(e.precision, 0.99);
+  EXPECT_EQ(e.recalled_corners, 8u);
+  EXPECT_EQ(polyline_corners(r.meshing.feature_edges).size(), 8u);
+  const std::vector<double> angles = feature_dihedral_angles(r.mesh, r.meshing.feature_edges);
+  ASSERT_FALSE(angles.empty());
+  for (double angle : angles) EXPECT_NEAR(angle, 90.0, 5.0);
+  // Without features the same delta rounds the edges: the feature mesh is much closer.
+  options.feature_mode = FeatureMode::None;
+  const ReconstructResult pif = reconstruct(sample(cube, 30000), options);
+  DistanceOptions d;
+  d.samples = 50000;
+  EXPECT_LT(2 * compare_meshes(r.mesh, cube, d).hausdorff, compare_meshes(pif.mesh, cube, d).hausdorff);
+}
+
+// Given polylines are protected as they are; a polyline far off the surface
+// is reported as an uncovered gap, not meshed into a spike.
+TEST(FeaturePreservingReconstruction, GivenPolylinesAndUncoveredGaps) {
+  const SurfaceMesh cube = test::cube_mesh(1.0);
+  ReconstructOptions options;
+  options.delta = 6;
+  options.feature_mode = FeatureMode::Given;
+  options.given_features = {{{-1, -1, -1}, {1, -1, -1}}, {{-0.5, 0, 3}, {0.5, 0, 3}}};
+  const ReconstructResult r = reconstruct(sample(cube, 30000), options);
+  ASSERT_EQ(r.meshing.uncovered.size(), 1u);
+  EXPECT_NEAR(r.meshing.uncovered[0].center[2], 3.0, 1e-6);
+  EXPECT_NEAR(r.meshing.uncovered[0].length, 1.0, 1e-6);
+  const double gap = r.meshing.uncovered[0].gap;  // -1: no surface found near it
+  EXPECT_TRUE(gap < 0 || gap > 1.5) << gap;
+  // The one given cube edge is a chain of mesh edges; the other edges are
+  // rounded as in PIF.
+  ASSERT_EQ(r.meshing.feature_edges.size(), 1u);
+  EXPECT_NEAR(distance(r.meshing.feature_edges[0].front(), r.meshing.feature_edges[0].back()), 2.0, 1e-9);
+  EXPECT_EQ(r.meshing.represented_segments, r.meshing.protected_segments);
+  expect_valid_and_close(r.mesh, cube, 0.05);
+}
+
+// Open surfaces: a square sheet gives an open mesh that stays on the sheet
+// instead of Poisson's closing surface.
+TEST(FeaturePreservingReconstruction, OpenSheetIsTrimmedToTheData) {
+  PointSet sheet;
+  for (int i = 0; i <= 100; ++i)
+    for (int j = 0; j <= 100; ++j) sheet.points.push_back({i / 100.0 + 0.002 * (j % 3), j / 100.0, 0.05 * std::sin(3.0 * i / 100.0)});
+  ReconstructOptions options;
+  options.feature_mode = FeatureMode::None;
+  const ReconstructResult r = reconstruct(sheet, options);
+  EXPECT_GT(r.trimmed_facets, 0u);
+  EXPECT_GT(r.boundary_edges, 0u);
+  for (const Vec3& v : r.mesh.vertices) EXPECT_LT(std::abs(v[2] - 0.05 * std::sin(3.0 * v[0])), 0.03);
+}
+
 // 30k points: PIF rounds the sharp edges, whose error dominates; the 200k
 // claim (< 1% of the diagonal) is the CLI test cli.fandisk-200k.
 TEST(Reconstruct, FandiskThirtyThousandPointsWithinTwoPercentOfTheDiagonal) {
   const std::string path = test::data_file("meshes/fandisk.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh fandisk = read_mesh(path);
-  const ReconstructResult r = reconstruct(sample(fandisk, 30000), ReconstructOptions{});
+  ReconstructOptions pif;
+  pif.feature_mode = FeatureMode::None;
+  const ReconstructResult r = reconstruct(sample(fandisk, 30000), pif);
   expect_valid_and_close(r.mesh, fandisk, 0.02);
+}
+
+// The feature pipeline on the same sparse cloud: closed, manifold, and
+// closer to the model than PIF at the same delta.
+TEST(FeaturePreservingReconstruction, FandiskThirtyThousandPointsCloserThanPif) {
+  const std::string path = test::data_file("meshes/fandisk.off");
+  if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
+  const SurfaceMesh fandisk = read_mesh(path);
+  const PointSet cloud = sample(fandisk, 30000);
+  const ReconstructResult r = reconstruct(cloud, ReconstructOptions{});
+  EXPECT_GT(r.meshing.represented_segments, 0.95 * r.meshing.protected_segments);
+  expect_valid_and_close(r.mesh, fandisk, 0.015);
+  ReconstructOptions pif;
+  pif.feature_mode = FeatureMode::None;
+  DistanceOptions d;
+  d.samples = 50000;
+  EXPECT_LT(compare_meshes(r.mesh, fandisk, d).hausdorff, compare_meshes(reconstruct(cloud, pif).mesh, fandisk, d).hausdorff);
 }
 
 TEST(Reconstruct, RejectsBadDeltaAndExplodingFacetCounts) {
