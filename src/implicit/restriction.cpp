@@ -12,8 +12,9 @@ class RestrictedSurface final : public ImplicitSurface {
       : inner_(std::move(inner)), index_(points), max_squared_(max_distance * max_distance) {}
 
   double value(const Vec3& p) const override {
-    std::vector<std::uint32_t> ids;
-    std::vector<double> d2;
+    // Called millions of times by the refinement: no allocation per call.
+    thread_local std::vector<std::uint32_t> ids;
+    thread_local std::vector<double> d2;
     index_.nearest(p, 1, ids, d2);
     if (d2.empty() || d2[0] > max_squared_) return 1.0;
     return inner_->value(p);
