@@ -41,10 +41,12 @@ struct BallSizing {
   FeatureProtection protection;
   double max_radius = 0;
 
-  double gap_at(const Vec3& p) const {
+  /// Distance from p to the implicit surface, or -1 when no surface point
+  /// lies within `search` of p (default: 4 x the largest ball radius).
+  double gap_at(const Vec3& p, double search = 0) const {
     Vec3 q;
     const double h = 1e-3 * protection.ball_radius;
-    if (!project_onto_surface(*surface, p, 0.5 * protection.ball_radius, 4 * max_radius, h, q)) return -1;
+    if (!project_onto_surface(*surface, p, 0.5 * protection.ball_radius, search > 0 ? search : 4 * max_radius, h, q)) return -1;
     return distance(p, q);
   }
   double operator()(const detail::Point3& p, int, const Domain::Index&) const {
@@ -104,15 +106,12 @@ std::vector<std::vector<detail::Point3>> coverable_parts(const std::vector<std::
                                                          const ImplicitSurface& surface, const BallSizing& sizing,
                                                          std::vector<UncoveredGap>& uncovered) {
   std::vector<std::vector<detail::Point3>> parts;
-  const double reach = 0.8 * sizing.max_radius, h = 1e-3 * sizing.protection.ball_radius;
+  const double reach = 0.8 * sizing.max_radius;
   for (const auto& line : polylines) {
     std::vector<double> gaps(line.size());
     bool all = true;
     for (std::size_t i = 0; i < line.size(); ++i) {
-      Vec3 q;
-      const Vec3 p = detail::from_cgal(line[i]);
-      gaps[i] = project_onto_surface(surface, p, 0.5 * sizing.protection.ball_radius, 2 * surface.bounding_radius(), h, q)
-                    ? distance(p, q) : -1;
+      gaps[i] = sizing.gap_at(detail::from_cgal(line[i]), 2 * surface.bounding_radius());
       all = all && gaps[i] >= 0 && gaps[i] <= reach;
     }
     if (all) {
@@ -219,7 +218,7 @@ void check_features(const C3t3& c3t3, const SurfaceMesh& mesh, const std::map<Po
     const Vec3 mid = 0.5 * (missing[i].first + missing[i].second);
     sums[root] = sums.count(root) ? sums[root] + mid : mid;
     ++counts[root];
-    gap.gap = std::max(gap.gap, sizing.surface ? sizing.gap_at(mid) : -1.0);
+    gap.gap = std::max(gap.gap, sizing.gap_at(mid));
   }
   for (auto& [root, gap] : stretches) {
     gap.center = (1.0 / counts[root]) * sums[root];
