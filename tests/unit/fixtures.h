@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "sharpmesh/errors.h"
 #include "sharpmesh/types.h"
 
 namespace sharpmesh::test {
@@ -28,5 +29,15 @@ class TempDir {
 /// Path of a file of CGAL's sample data, or "" when the data is not fetched.
 std::string data_file(const std::string& relative);
 void write_bytes(const std::string& path, const std::string& bytes);
+/// The message of the InvalidInput that `f` throws, or "no error".
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 }  // namespace sharpmesh::test

@@ -11,19 +11,10 @@
 
 using namespace sharpmesh;
 using test::TempDir;
+using test::error_of;
 using test::write_bytes;
 
 namespace {
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 std::string bytes_of(const void* p, std::size_t n) { return std::string(static_cast<const char*>(p), n); }
 
