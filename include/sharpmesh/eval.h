@@ -100,3 +100,33 @@ FeatureEvaluation evaluate_features(const std::vector<Polyline>& extracted, cons
                                     const SurfaceMesh& reference, const FeatureEvalOptions& options = {});
 
 }  // namespace sharpmesh
+
+#include "sharpmesh/stereo.h"
+
+namespace sharpmesh {
+
+/// Multi-view stereo evaluation in the manner of Strecha et al. 2008 and the
+/// thesis's Fig. 6.8: cumulative error distributions of
+///  - accuracy: distance from samples of the result to the reference surface;
+///  - completeness: distance from samples of the reference surface that some
+///    camera sees (ray-cast visibility) to the result.
+/// Thresholds are fractions of the scene size: the bounding-box diagonal of
+/// the visible reference samples.
+struct StereoEvalOptions {
+  std::size_t samples = 200'000;  ///< per surface
+  std::uint64_t seed = 0;
+  std::vector<double> thresholds = {0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05};  ///< fractions of the scene size
+  void check() const;
+};
+struct StereoEvaluation {
+  double scene_size = 0;                ///< data units
+  std::vector<double> thresholds;       ///< data units, increasing
+  std::vector<double> accuracy;         ///< fraction of result samples within each threshold
+  std::vector<double> completeness;     ///< fraction of visible reference samples within each threshold
+  double accuracy_median = 0, completeness_median = 0;  ///< distances, data units
+  std::size_t result_samples = 0, visible_reference_samples = 0;
+};
+StereoEvaluation evaluate_stereo(const SurfaceMesh& mesh, const SurfaceMesh& reference, const std::vector<Camera>& cameras,
+                                 const StereoEvalOptions& options = {}, const Progress& progress = {});
+
+}  // namespace sharpmesh

@@ -334,6 +334,17 @@ struct Observation {
   std::int64_t point;
 };
 
+// COLMAP's ERROR column: the mean reprojection error of a track, pixels.
+double mean_reprojection_error(const StereoModel& model, const Track& t) {
+  if (t.pixels.empty()) return 0;
+  double sum = 0;
+  for (std::size_t k = 0; k < t.views.size(); ++k) {
+    Vec2 p;
+    if (model.cameras[t.views[k]].project(t.position, p)) sum += std::hypot(p[0] - t.pixels[k][0], p[1] - t.pixels[k][1]);
+  }
+  return sum / static_cast<double>(t.views.size());
+}
+
 // For each view, the observations it makes, and for each track the index of
 // its observation in each of its views (COLMAP's POINT2D_IDX).
 void collect_observations(const StereoModel& model, std::vector<std::vector<Observation>>& per_view,
@@ -384,7 +395,7 @@ void write_text(const std::string& folder, const StereoModel& model) {
   for (std::size_t i = 0; i < model.tracks.size(); ++i) {
     const Track& t = model.tracks[i];
     points << i + 1 << ' ' << t.position[0] << ' ' << t.position[1] << ' ' << t.position[2] << ' ' << int(t.color[0]) << ' '
-           << int(t.color[1]) << ' ' << int(t.color[2]) << " 0";
+           << int(t.color[1]) << ' ' << int(t.color[2]) << ' ' << mean_reprojection_error(model, t);
     for (std::size_t k = 0; k < t.views.size(); ++k) points << ' ' << t.views[k] + 1 << ' ' << index[i][k];
     points << '\n';
   }
@@ -425,7 +436,7 @@ void write_binary(const std::string& folder, const StereoModel& model) {
     points.write<std::uint64_t>(i + 1);
     for (double c : t.position) points.write<double>(c);
     for (std::uint8_t c : t.color) points.write<std::uint8_t>(c);
-    points.write<double>(0.0);
+    points.write<double>(mean_reprojection_error(model, t));
     points.write<std::uint64_t>(t.views.size());
     for (std::size_t k = 0; k < t.views.size(); ++k) {
       points.write<std::uint32_t>(t.views[k] + 1);

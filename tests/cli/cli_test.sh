@@ -38,7 +38,7 @@ PY
 
 case "$case_name" in
   help)
-    for cmd in "" info clean sample eval reconstruct; do
+    for cmd in "" info clean sample eval reconstruct features eval-features make-scene eval-stereo; do
       $bin $cmd --help >out.txt || fail "--help of '$cmd' failed"
       grep -q "Usage" out.txt || fail "--help of '$cmd' shows no usage"
     done ;;
@@ -143,6 +143,24 @@ PY
     cloud 100 c.xyz; mkdir ro; chmod a-w ro
     expect_error 2 "not writable" "ro/out.ply" $bin clean c.xyz -o ro/out.ply ;;
   bad-option) expect_error 2 "banana" "" $bin reconstruct --delta banana ;;
+  make-scene-eval)  # issue 5: a small scene, and eval-stereo of its own ground truth is 100% everywhere
+    $bin make-scene sc --views 6 --width 160 --height 120 --samples 3000 --seed 2 -q --report r.json || fail "make-scene failed"
+    python3 -c "import json; r=json.load(open('r.json')); assert r['counts']['tracks']>500 and r['reprojection_pixels']['rms']<0.75, r" || fail "bad scene report"
+    [[ -f sc/images/view_005.png && -f sc/sparse/points3D.txt && -f sc/dense/fused.ply.vis ]] || fail "scene layout incomplete"
+    $bin eval-stereo sc/ground_truth.ply --scene sc --samples 20000 --json e.json --plot e.png -q || fail "eval-stereo failed"
+    python3 -c "import json; r=json.load(open('e.json'))['results'][0]; assert r['accuracy'][0]==1 and r['completeness'][0]==1, r" || fail "ground truth is not 100%"
+    [[ $(head -c 4 e.png | tail -c 3) == PNG ]] || fail "no PNG plot"
+    $bin eval-stereo sc/ground_truth.ply --reference sc/ground_truth.ply --cameras sc/sparse -q --json f.json || fail "--reference/--cameras failed" ;;
+  make-scene-bad)
+    expect_error 2 "views" "sc" $bin make-scene sc --views 1
+    expect_error 2 "does not exist" "" $bin make-scene no/such/sc
+    mkdir mine; echo keep > mine/notes.txt
+    expect_error 2 "not a sharpmesh scene" "" $bin make-scene mine
+    [[ -f mine/notes.txt ]] || fail "a foreign folder was touched" ;;
+  eval-stereo-bad)
+    $bin sample "$data/meshes/cube.off" -n 100 -o c.ply -q
+    expect_error 1 "no/scene" "e.json" $bin eval-stereo "$data/meshes/cube.off" --scene no/scene --json e.json
+    expect_error 2 "reference" "" $bin eval-stereo "$data/meshes/cube.off" ;;
   laz-refused) printf 'LASF' > c.laz; expect_error 1 "LAZ" "out.ply" $bin clean c.laz -o out.ply ;;
   features)
     $bin sample "$data/meshes/cube.off" -n 20000 --seed 3 -o s.ply -q || fail "sample failed"
