@@ -66,6 +66,9 @@ DistanceReport compare_meshes(const SurfaceMesh& mesh, const SurfaceMesh& refere
 
 double surface_area(const SurfaceMesh& mesh);
 
+/// Distance from each point to the nearest point of the mesh (parallel).
+std::vector<double> distances_to_mesh(const std::vector<Vec3>& points, const SurfaceMesh& mesh);
+
 }  // namespace sharpmesh
 
 namespace sharpmesh {

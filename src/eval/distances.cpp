@@ -1,6 +1,5 @@
 // Two-sided distances between a mesh and a reference (Metro-style sampling),
 // and sharp-edge fidelity (thesis 7.5, 8.2).
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 
@@ -17,10 +16,7 @@ struct OneSided {
 };
 
 OneSided distances_to(const std::vector<Vec3>& queries, const detail::TriangleDistance& target) {
-  std::vector<double> d(queries.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) d[i] = std::sqrt(target.squared_distance(queries[i]));
-  });
+  const std::vector<double> d = target.distances(queries);
   OneSided out;  // summed in order: the result does not depend on the thread count
   for (double x : d) {
     out.max = std::max(out.max, x);
@@ -41,6 +37,11 @@ std::vector<Vec3> samples_and_vertices(const SurfaceMesh& mesh, std::size_t coun
 }
 
 }  // namespace
+
+std::vector<double> distances_to_mesh(const std::vector<Vec3>& points, const SurfaceMesh& mesh) {
+  if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces");
+  return detail::TriangleDistance(mesh).distances(points);
+}
 
 void DistanceOptions::check() const {
   if (samples == 0) throw InvalidArgument("the number of distance samples must be positive");

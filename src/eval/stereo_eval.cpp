@@ -13,14 +13,6 @@
 namespace sharpmesh {
 namespace {
 
-std::vector<double> distances(const std::vector<Vec3>& queries, const detail::TriangleDistance& target) {
-  std::vector<double> d(queries.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) d[i] = std::sqrt(target.squared_distance(queries[i]));
-  });
-  return d;
-}
-
 std::vector<double> cumulative(std::vector<double> d, const std::vector<double>& thresholds, double& median) {
   std::sort(d.begin(), d.end());
   median = d.empty() ? 0 : d[d.size() / 2];
@@ -74,13 +66,13 @@ StereoEvaluation evaluate_stereo(const SurfaceMesh& mesh, const SurfaceMesh& ref
   for (double t : options.thresholds) e.thresholds.push_back(t * e.scene_size);
   report_progress(progress, "completeness", 0.3);
   const detail::TriangleDistance to_mesh(mesh);
-  e.completeness = cumulative(distances(seen, to_mesh), e.thresholds, e.completeness_median);
+  e.completeness = cumulative(to_mesh.distances(seen), e.thresholds, e.completeness_median);
   e.visible_reference_samples = seen.size();
   report_progress(progress, "accuracy", 0.6);
   sampling.seed = options.seed + 1;
   const std::vector<Vec3> result_samples = sample_mesh(mesh, sampling).points;
   const detail::TriangleDistance to_reference(reference);
-  e.accuracy = cumulative(distances(result_samples, to_reference), e.thresholds, e.accuracy_median);
+  e.accuracy = cumulative(to_reference.distances(result_samples), e.thresholds, e.accuracy_median);
   e.result_samples = result_samples.size();
   report_progress(progress, "accuracy", 1.0);
   return e;

@@ -1,5 +1,9 @@
 #include "eval/triangle_distance.h"
 
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -35,5 +39,13 @@ TriangleDistance::~TriangleDistance() = default;
 double TriangleDistance::squared_distance(const Vec3& q) const { return impl_->tree.squared_distance(to_cgal(q)); }
 
 Vec3 TriangleDistance::closest_point(const Vec3& q) const { return from_cgal(impl_->tree.closest_point(to_cgal(q))); }
+
+std::vector<double> TriangleDistance::distances(const std::vector<Vec3>& queries) const {
+  std::vector<double> d(queries.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) d[i] = std::sqrt(squared_distance(queries[i]));
+  });
+  return d;
+}
 
 }  // namespace sharpmesh::detail

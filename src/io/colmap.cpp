@@ -499,21 +499,22 @@ StereoModel read_colmap_fused(const std::string& ply_path, const std::vector<Cam
 }
 
 void write_colmap_fused(const std::string& ply_path, const StereoModel& model, const std::vector<Vec3>& normals) {
-  PointSet points;
-  points.points.reserve(model.tracks.size());
-  points.colors.reserve(model.tracks.size());
-  for (const Track& t : model.tracks) {
-    points.points.push_back(t.position);
-    points.colors.push_back(t.color);
-  }
-  points.normals = normals;
-  BinaryWriter vis;
+  // COLMAP's own layout (mvs/fusion): float x y z nx ny nz, uchar red green blue.
+  if (!normals.empty() && normals.size() != model.tracks.size()) throw std::logic_error("write_colmap_fused: one normal per point expected");
+  std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(model.tracks.size()) +
+                       "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                       "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  BinaryWriter body, vis;
   vis.write<std::uint64_t>(model.tracks.size());
-  for (const Track& t : model.tracks) {
+  for (std::size_t i = 0; i < model.tracks.size(); ++i) {
+    const Track& t = model.tracks[i];
+    for (double c : t.position) body.write<float>(static_cast<float>(c));
+    for (int k = 0; k < 3; ++k) body.write<float>(normals.empty() ? 0.0f : static_cast<float>(normals[i][k]));
+    for (std::uint8_t c : t.color) body.write<std::uint8_t>(c);
     vis.write<std::uint32_t>(static_cast<std::uint32_t>(t.views.size()));
     for (std::uint32_t v : t.views) vis.write<std::uint32_t>(v);
   }
-  io::write_ply_points(ply_path, points, PlyFormat::Binary);
+  write_text_file(ply_path, header + body.bytes());
   write_text_file(ply_path + ".vis", vis.bytes());
 }
 

@@ -151,3 +151,33 @@ TEST(EvalStereo, TruthIsPerfectAndMissingPartsLowerCompleteness) {
   EXPECT_DOUBLE_EQ(swapped.completeness.front(), 1.0);
   EXPECT_LT(swapped.accuracy.back(), 0.8);
 }
+
+TEST(Colmap, ReadsTracksTriangulatedByColmapOnAGeneratedScene) {
+  // tests/data/colmap/triangulated: COLMAP 3.8's SIFT + point_triangulator on
+  // `make-scene --views 8 --width 320 --height 240` (seed 1), binary model.
+  const StereoModel colmap = read_colmap_model(std::string(SHARPMESH_TEST_DATA) + "/colmap/triangulated");
+  TempDir dir;
+  SceneOptions o;
+  o.views = 8;
+  o.width = 320;
+  o.height = 240;
+  o.samples = 200;
+  make_scene(dir.path("scene"), o);
+  const StereoModel ours = read_colmap_model(dir.path("scene/sparse"));
+  ASSERT_EQ(colmap.cameras.size(), ours.cameras.size());
+  for (const Camera& c : colmap.cameras) {  // COLMAP kept the poses it was given
+    const auto same = std::find_if(ours.cameras.begin(), ours.cameras.end(), [&](const Camera& k) { return k.image_name == c.image_name; });
+    ASSERT_NE(same, ours.cameras.end());
+    EXPECT_LT(distance(same->center(), c.center()), 1e-6);
+    EXPECT_NEAR(same->fx, c.fx, 1e-6);
+  }
+  EXPECT_GT(colmap.tracks.size(), 300u);
+  EXPECT_LT(reprojection_error(colmap).rms, 1.0);
+  // COLMAP's tracks lie on the ground truth: its matches of our images are right.
+  const SurfaceMesh truth = read_mesh(dir.path("scene/ground_truth.ply"));
+  std::vector<Vec3> positions;
+  for (const Track& t : colmap.tracks) positions.push_back(t.position);
+  std::vector<double> d = distances_to_mesh(positions, truth);
+  std::sort(d.begin(), d.end());
+  EXPECT_LT(d[d.size() / 2], 0.002 * bounding_box(truth.vertices).diagonal());
+}
