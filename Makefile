@@ -39,6 +39,7 @@ bench: data
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 	@bench/run $(BUILD_DIR)
 	@bench/accuracy_vs_size $(BUILD_DIR)
+	@bench/colmap_baseline $(BUILD_DIR)
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_DIR)

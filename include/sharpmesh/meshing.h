@@ -72,6 +72,8 @@ struct ImplicitMeshingResult {
   std::size_t represented_segments = 0;  ///< of those, edges of the output mesh
   double max_gap = 0;                    ///< largest polyline-to-surface distance measured at a ball
   std::vector<UncoveredGap> uncovered;
+  std::size_t refinement_steps = 0;   ///< Mesher_3 steps
+  bool refinement_stalled = false;    ///< stopped after many steps without a new vertex
 };
 
 /// Meshes the zero level set of `surface` inside its bounding sphere by

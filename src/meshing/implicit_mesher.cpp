@@ -16,7 +16,10 @@
 #include <CGAL/facets_in_complex_3_to_triangle_mesh.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <unordered_set>
 
@@ -80,6 +83,50 @@ std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Pol
 
 /// Surface seeds for components the protecting balls do not reach: the
 /// domain's initial points outside every ball.
+// Mesher_3::refine_mesh() step by step (as CGAL's own loop does), so that the
+// progress callback can cancel, and so that a refinement that keeps working
+// without adding vertices is stopped and its current mesh kept. This happens
+// with the manifold option when a non-manifold vertex next to protecting
+// balls cannot be repaired: CGAL then rescans it forever (couplingdown 50k).
+// Stalled: no new vertex for 20000 steps, or for max(20 s, the refinement
+// time until the last new vertex).
+template <class Mesher>
+void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices, const Progress& progress,
+                     ImplicitMeshingResult& result) {
+  using Clock = std::chrono::steady_clock;
+  const bool debug = std::getenv("SHARPMESH_DEBUG_REFINE") != nullptr;
+  const auto start = Clock::now();
+  auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  mesher.initialize();
+  std::size_t steps = 0, last_growth_step = 0, vertices = c3t3.triangulation().number_of_vertices();
+  Clock::time_point last_growth = start, last_report = start;
+  bool grew = false;
+  while (!mesher.is_algorithm_done()) {
+    mesher.one_step();
+    ++steps;
+    const std::size_t now = c3t3.triangulation().number_of_vertices();
+    if (now > vertices) {
+      vertices = now;
+      last_growth_step = steps;
+      grew = true;
+    }
+    if (max_vertices > 0 && now >= max_vertices) break;
+    if (steps % 64 != 0) continue;
+    const Clock::time_point t = Clock::now();
+    if (grew) last_growth = t, grew = false;
+    if (steps - last_growth_step > 20000 || seconds(last_growth, t) > std::max(20.0, seconds(start, last_growth))) {
+      result.refinement_stalled = true;
+      break;
+    }
+    if (seconds(last_report, t) > 0.25) {
+      last_report = t;
+      if (debug) std::fprintf(stderr, "refine: %zu steps, %zu vertices, %.1f s\n", steps, now, seconds(start, t));
+      report_progress(progress, "refinement", max_vertices > 0 ? std::min(0.99, static_cast<double>(now) / static_cast<double>(max_vertices)) : 0.5);
+    }
+  }
+  result.refinement_steps = steps;
+}
+
 void insert_surface_seeds(C3t3& c3t3, const Domain& domain) {
   std::vector<std::pair<detail::Point3, double>> balls;
   for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v)
@@ -326,7 +373,8 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
 
   report_progress(progress, "refinement", 0.0);
   CGAL::Mesh_3::Mesher_3<C3t3, Criteria, Domain> mesher(c3t3, domain, criteria, CGAL::MANIFOLD, max_vertices, &error);
-  mesher.refine_mesh();
+  refine_stepwise(mesher, c3t3, max_vertices, progress, result);
+  if (max_vertices > 0 && c3t3.triangulation().number_of_vertices() >= max_vertices) error = CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED;
   c3t3.clear_manifold_info();
   report_progress(progress, "refinement", 1.0);
   if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED && budget_from_data)
