@@ -42,6 +42,12 @@ void write_curve_plot(const std::string& path, const std::vector<double>& x, con
     cv::rectangle(image, {x0, y1}, {x1, y0}, {0, 0, 0});
     text(image, panels[p].title, {x0, y1 - 14}, 0.55);
     text(image, x_title, {x0 + 40, panel_h - 14}, 0.4);
+    int legend_width = 0;
+    for (const Curve& curve : panels[p].curves) {
+      int baseline = 0;
+      legend_width = std::max(legend_width, cv::getTextSize(curve.label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width);
+    }
+    const int lx = std::max(x0 + 5, x1 - legend_width - 35);
     for (std::size_t c = 0; c < panels[p].curves.size(); ++c) {
       const Curve& curve = panels[p].curves[c];
       const cv::Scalar color = kColors[c % (sizeof kColors / sizeof kColors[0])];
@@ -49,8 +55,8 @@ void write_curve_plot(const std::string& path, const std::vector<double>& x, con
         cv::line(image, {px(x[i]), py(curve.y[i])}, {px(x[i + 1]), py(curve.y[i + 1])}, color, 2, cv::LINE_AA);
       for (std::size_t i = 0; i < std::min(x.size(), curve.y.size()); ++i) cv::circle(image, {px(x[i]), py(curve.y[i])}, 3, color, -1, cv::LINE_AA);
       const int ly = y0 - 12 - 18 * static_cast<int>(panels[p].curves.size() - 1 - c);
-      cv::line(image, {x1 - 150, ly - 4}, {x1 - 130, ly - 4}, color, 2);
-      text(image, curve.label, {x1 - 125, ly}, 0.4);
+      cv::line(image, {lx, ly - 4}, {lx + 20, ly - 4}, color, 2);
+      text(image, curve.label, {lx + 25, ly}, 0.4);
     }
   }
   std::vector<unsigned char> png;
