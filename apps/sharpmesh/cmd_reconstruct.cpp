@@ -148,6 +148,9 @@ Command add_reconstruct(CLI::App& app) {
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);
+    report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}};
+    if (result.meshing.refinement_stalled && !common->quiet)
+      std::fprintf(stderr, "reconstruct: warning: refinement stopped adding vertices and was ended early; check the mesh's topology\n");
     if (options.feature_mode == FeatureMode::Extract) report["features"] = feature_report(result.features, options.features, diagonal);
     write_report(common->report, report);
   };

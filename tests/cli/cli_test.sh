@@ -137,6 +137,7 @@ PY
   zero-delta) cloud 500 c.xyz; expect_error 2 "delta must be positive" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features --delta 0 ;;
   negative-delta) cloud 500 c.xyz; expect_error 2 "delta must be positive" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features --delta -2 ;;
   delta-too-small) cloud 500 c.xyz; expect_error 2 "max-facets" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features --delta 0.0001 ;;
+  delta-too-small-features) cloud 500 c.xyz; expect_error 2 "max-facets" "out.ply" $bin reconstruct c.xyz -o out.ply --delta 0.0001 ;;
   missing-output-folder) cloud 100 c.xyz; expect_error 2 "does not exist" "" $bin clean c.xyz -o no/such/dir/out.ply ;;
   readonly-output-folder)
     [[ $(id -u) -eq 0 ]] && { echo "running as root: permissions are not enforced, skipped"; exit 0; }
