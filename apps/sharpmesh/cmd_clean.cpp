@@ -24,6 +24,7 @@ Command add_clean(CLI::App& app) {
     int normal_k = 18;
     bool orient = false;
     int orient_k = 18;
+    std::string orient_method = "tangent";
     std::uint64_t seed = 0;
     bool ascii = false;
   };
@@ -50,6 +51,10 @@ Command add_clean(CLI::App& app) {
   sub->add_option("--normal-k", o->normal_k, "Neighbours for --normals")->capture_default_str()->group(g4);
   sub->add_flag("--orient", o->orient, "Orient normals by minimum spanning tree (App. A.8); unorientable points are removed")->group(g4);
   sub->add_option("--orient-k", o->orient_k, "Neighbours for --orient")->capture_default_str()->group(g4);
+  sub->add_option("--orient-method", o->orient_method,
+                  "tangent: MST whose weights also penalise leaving the tangent planes (no flips across thin walls); "
+                  "cgal: CGAL's mst_orient_normals (weights 1 - |ni.nj|)")
+      ->check(CLI::IsMember({"tangent", "cgal"}))->capture_default_str()->group(g4);
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
   common->add_to(*sub);
 
@@ -97,7 +102,8 @@ Command add_clean(CLI::App& app) {
     }
     if (o->orient) {
       StageTimer stage(stages, "orientation");
-      counts["unoriented_removed"] = orient_normals_mst(points, {o->orient_k, true}, progress);
+      if (o->orient_method == "cgal") counts["unoriented_removed"] = orient_normals_mst(points, {o->orient_k, true}, progress);
+      else counts["orientation_components"] = orient_normals_tangent_mst(points, o->orient_k, progress);
     }
     if (points.empty()) throw InvalidInput(o->input + ": no point left after cleaning");
     {
@@ -115,7 +121,7 @@ Command add_clean(CLI::App& app) {
                                     {"outliers_sigma", o->outlier_sigmas}, {"sigma_k", o->sigma_k},
                                     {"grid_cell_in_average_spacings", o->grid_cell}, {"random", o->random_percentage},
                                     {"seed", o->seed}, {"smooth_k", o->smooth_k}, {"normals", o->normals},
-                                    {"normal_k", o->normal_k}, {"orient", o->orient}, {"orient_k", o->orient_k}}},
+                                    {"normal_k", o->normal_k}, {"orient", o->orient}, {"orient_k", o->orient_k}, {"orient_method", o->orient_method}}},
                                   {"counts", counts},
                                   {"stages", stages_json(stages)}});
   };

@@ -74,4 +74,10 @@ struct NormalOrientationOptions {
 std::size_t orient_normals_mst(PointSet& points, const NormalOrientationOptions& options = {},
                                const Progress& progress = {});
 
+/// MST orientation whose edge weights also penalise leaving the tangent
+/// planes, so that a flip does not spread across thin walls. Every point is
+/// oriented (each connected component of the k-nearest-neighbour graph from
+/// its highest point, normal up); returns the number of components.
+std::size_t orient_normals_tangent_mst(PointSet& points, int k = 18, const Progress& progress = {});
+
 }  // namespace sharpmesh

@@ -70,7 +70,8 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
       estimate_normals(oriented, options.normals, progress);
       result.normal_source = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
     }
-    orient_normals_mst(oriented, options.orientation, progress);
+    // Tangent-aware MST (orientation.cpp): no flips across thin walls.
+    orient_normals_tangent_mst(oriented, options.orientation.k, progress);
     result.normals_estimated = true;
   } else {
     result.normal_source = "input";

@@ -153,3 +153,36 @@ TEST(CheckPointSet, RejectsEmptyNanAndCoincidentSets) {
   ps.points = {{0, 0, 0}, {1, 0, 0}, {NAN, 0, 0}};
   EXPECT_THROW(check_point_set(ps, 1, "test"), InvalidInput);
 }
+
+namespace {
+
+// Fraction of normals pointing against the exact ones (after undoing a global flip).
+double flipped_fraction(const PointSet& oriented, const PointSet& truth) {
+  std::size_t against = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i) against += dot(oriented.normals[i], truth.normals[i]) < 0;
+  const double f = static_cast<double>(against) / static_cast<double>(truth.size());
+  return std::min(f, 1 - f);
+}
+
+}  // namespace
+
+TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
+  // A 1 x 1 x 0.02 slab: the 18 nearest neighbours of a point reach the
+  // opposite face, whose normals are parallel (weight 0 for CGAL's MST).
+  SurfaceMesh slab = test::cube_mesh(0.5);
+  for (Vec3& v : slab.vertices) v[2] *= 0.02;
+  SampleOptions sampling;
+  sampling.count = 20000;
+  sampling.seed = 4;
+  sampling.with_normals = true;
+  const PointSet truth = sample_mesh(slab, sampling);
+  PointSet cgal = truth, ours = truth;
+  estimate_normals(cgal, {});
+  estimate_normals(ours, {});
+  orient_normals_mst(cgal, {18, false});
+  EXPECT_EQ(orient_normals_tangent_mst(ours, 18), 1u);
+  const double ours_flipped = flipped_fraction(ours, truth), cgal_flipped = flipped_fraction(cgal, truth);
+  EXPECT_LT(ours_flipped, 0.005);
+  EXPECT_GT(cgal_flipped, ours_flipped);
+  std::printf("flipped normals on a thin slab: tangent MST %.4f, CGAL MST %.4f\n", ours_flipped, cgal_flipped);
+}
