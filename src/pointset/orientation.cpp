@@ -25,6 +25,9 @@ struct Edge {
 }  // namespace
 
 std::size_t orient_normals_tangent_mst(PointSet& points, int k, const Progress& progress) {
+  check_point_set(points, 4, "normal orientation");
+  NormalOrientationOptions{k, false}.check(points.size());
+  if (!points.has_normals()) throw InvalidArgument("normal orientation: the points have no normals to orient");
   const std::size_t n = points.size();
   report_progress(progress, "normal orientation", 0.0);
   const detail::KnnIndex index(points.points);

@@ -184,5 +184,8 @@ TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
   const double ours_flipped = flipped_fraction(ours, truth), cgal_flipped = flipped_fraction(cgal, truth);
   EXPECT_LT(ours_flipped, 0.005);
   EXPECT_GT(cgal_flipped, ours_flipped);
+  PointSet bare;
+  bare.points = truth.points;
+  EXPECT_THROW(orient_normals_tangent_mst(bare, 18), InvalidArgument);
   std::printf("flipped normals on a thin slab: tangent MST %.4f, CGAL MST %.4f\n", ours_flipped, cgal_flipped);
 }
