@@ -21,6 +21,8 @@ struct SampleOptions {
   void check() const;
 };
 PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options);
+/// The same samples, with the index of the face each one lies on.
+PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options, std::vector<std::uint32_t>& faces);
 
 /// Edges whose two incident facets make an angle above `angle_deg` (0: flat),
 /// chained into polylines that run between vertices of sharp degree != 2

@@ -22,7 +22,14 @@ double surface_area(const SurfaceMesh& mesh) {
 }
 
 PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options) {
+  std::vector<std::uint32_t> faces;
+  return sample_mesh(mesh, options, faces);
+}
+
+PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options, std::vector<std::uint32_t>& faces) {
   options.check();
+  faces.clear();
+  faces.reserve(options.count);
   std::vector<double> cumulative(mesh.faces.size());
   double total = 0;
   for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
@@ -52,6 +59,7 @@ PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options) {
     Vec3 p = (1 - r1) * a + (r1 * (1 - r2)) * b + (r1 * r2) * c;
     if (amplitude > 0) p = p + Vec3{offset(rng), offset(rng), offset(rng)};
     out.points.push_back(p);
+    faces.push_back(static_cast<std::uint32_t>(face));
     if (options.with_normals) {
       const Vec3 n = cross(b - a, c - a);
       out.normals.push_back((1.0 / norm(n)) * n);

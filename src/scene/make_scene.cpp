@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <random>
 
+#include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -23,6 +24,7 @@
 #include "scene/building.h"
 #include "scene/texture.h"
 #include "sharpmesh/errors.h"
+#include "sharpmesh/eval.h"
 #include "sharpmesh/io.h"
 #include "sharpmesh/scene.h"
 #include "sharpmesh/stereo_io.h"
@@ -113,55 +115,21 @@ Rendering render(const Camera& cam, const SceneGeometry& g, const detail::RayCas
   return r;
 }
 
-// Least-squares point closest to the rays (thesis 3.2.2).
+// Least-squares point closest to the rays (thesis 3.2.2): sum over rays of
+// (I - d d^T) (x - o) = 0.
 Vec3 triangulate(const std::vector<Camera>& cams, const std::vector<std::uint32_t>& views, const std::vector<Vec2>& pixels) {
-  double a[3][3] = {}, b[3] = {};
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (std::size_t k = 0; k < views.size(); ++k) {
     const Camera& c = cams[views[k]];
     const Vec3 d = c.viewing_ray(pixels[k]), o = c.center();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        const double m = (i == j ? 1.0 : 0.0) - d[i] * d[j];
-        a[i][j] += m;
-        b[i] += m * o[j];
-      }
+    const Eigen::Vector3d dv(d[0], d[1], d[2]);
+    const Eigen::Matrix3d m = Eigen::Matrix3d::Identity() - dv * dv.transpose();
+    a += m;
+    b += m * Eigen::Vector3d(o[0], o[1], o[2]);
   }
-  const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                     a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-  Vec3 x;
-  for (int col = 0; col < 3; ++col) {  // Cramer's rule
-    double m[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) m[i][j] = j == col ? b[i] : a[i][j];
-    x[col] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-              m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) / det;
-  }
-  return x;
-}
-
-struct SurfaceSample {
-  Vec3 point;
-  std::uint32_t face;
-};
-
-std::vector<SurfaceSample> sample_surface(const SurfaceMesh& mesh, std::size_t count, std::mt19937_64& rng) {
-  std::vector<double> cumulative;
-  double total = 0;
-  for (const Triangle& f : mesh.faces) {
-    total += 0.5 * norm(cross(mesh.vertices[f[1]] - mesh.vertices[f[0]], mesh.vertices[f[2]] - mesh.vertices[f[0]]));
-    cumulative.push_back(total);
-  }
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<SurfaceSample> out(count);
-  for (SurfaceSample& s : out) {
-    const auto it = std::lower_bound(cumulative.begin(), cumulative.end(), u(rng) * total);
-    s.face = static_cast<std::uint32_t>(std::min<std::ptrdiff_t>(it - cumulative.begin(), static_cast<std::ptrdiff_t>(mesh.faces.size()) - 1));
-    double r1 = u(rng), r2 = u(rng);
-    if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;
-    const Triangle& f = mesh.faces[s.face];
-    s.point = mesh.vertices[f[0]] + r1 * (mesh.vertices[f[1]] - mesh.vertices[f[0]]) + r2 * (mesh.vertices[f[2]] - mesh.vertices[f[0]]);
-  }
-  return out;
+  const Eigen::Vector3d x = a.ldlt().solve(b);
+  return {x[0], x[1], x[2]};
 }
 
 Rgb to_rgb(const Color& c) {
@@ -174,17 +142,24 @@ void make_tracks(const SceneGeometry& g, const std::vector<Camera>& cams, const 
   std::mt19937_64 rng(o.seed * 7919 + 1);
   std::normal_distribution<double> pixel_noise(0.0, o.noise);
   std::vector<std::pair<Track, bool>> tracks;
-  for (const SurfaceSample& s : sample_surface(g.mesh, o.samples, rng)) {
+  SampleOptions sampling;
+  sampling.count = o.samples;
+  sampling.seed = o.seed;
+  std::vector<std::uint32_t> faces;
+  const std::vector<Vec3> samples = sample_mesh(g.mesh, sampling, faces).points;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Vec3& point = samples[i];
+    const std::uint32_t face = faces[i];
     Track t;
     for (std::uint32_t v = 0; v < cams.size(); ++v) {
       Vec2 p;
-      if (!cams[v].project(s.point, p) || !cams[v].in_image(p) || caster.occluded(cams[v].center(), s.point)) continue;
+      if (!cams[v].project(point, p) || !cams[v].in_image(p) || caster.occluded(cams[v].center(), point)) continue;
       t.views.push_back(v);
       t.pixels.push_back({p[0] + pixel_noise(rng), p[1] + pixel_noise(rng)});
     }
     if (t.views.size() < 2) continue;
     t.position = triangulate(cams, t.views, t.pixels);
-    t.color = to_rgb(texture.shade(s.point, g.normal[s.face], g.material[s.face]));
+    t.color = to_rgb(texture.shade(point, g.normal[face], g.material[face]));
     tracks.emplace_back(std::move(t), false);
   }
   const std::size_t inliers = tracks.size();
