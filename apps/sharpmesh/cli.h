@@ -41,6 +41,7 @@ Command add_features(CLI::App& app);
 Command add_eval_features(CLI::App& app);
 Command add_make_scene(CLI::App& app);
 Command add_eval_stereo(CLI::App& app);
+Command add_stereo(CLI::App& app);
 
 /// The feature-detection flags of `features`, shared with `reconstruct`.
 void add_feature_options(CLI::App& sub, FeatureOptions& options);

@@ -38,6 +38,10 @@ struct SigmaOutlierOptions {
 };
 std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& options = {},
                                   const Progress& progress = {});
+/// The same rule as flags (true: outlier), for callers that keep their own
+/// records per point (the tracks of Section 6.3.1). Points must be finite.
+std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOutlierOptions& options = {},
+                                 const Progress& progress = {});
 
 /// Keeps one point per cell of a regular grid of the given cell size (App. A.5).
 std::size_t grid_simplify(PointSet& points, double cell_size);

@@ -56,18 +56,18 @@ std::size_t remove_outliers_percentage(PointSet& points, const PercentageOutlier
   return removed;
 }
 
-std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& options, const Progress& progress) {
-  check_point_set(points, 2, "3-sigma outlier removal");
+std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOutlierOptions& options,
+                                 const Progress& progress) {
   options.check(points.size());
   const std::size_t n = points.size();
   report_progress(progress, "3-sigma outlier removal", 0.0);
-  const detail::KnnIndex index(points.points);
+  const detail::KnnIndex index(points);
   std::vector<double> dk(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      index.nearest(points.points[i], options.k + 1, ids, d2);  // +1: the point itself is its own nearest
+      index.nearest(points[i], options.k + 1, ids, d2);  // +1: the point itself is its own nearest
       double sum = 0;
       for (std::size_t j = 1; j < d2.size(); ++j) sum += d2[j];
       dk[i] = sum / options.k;
@@ -82,11 +82,19 @@ std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& o
   for (double d : dk) variance += (d - mean) * (d - mean);
   const double sigma = std::sqrt(variance / n);
   const double threshold = mean + options.sigmas * sigma;
-  std::vector<bool> keep(n);
+  std::vector<bool> outlier(n);
+  for (std::size_t i = 0; i < n; ++i) outlier[i] = dk[i] > threshold;
+  return outlier;
+}
+
+std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& options, const Progress& progress) {
+  check_point_set(points, 2, "3-sigma outlier removal");
+  const std::vector<bool> outlier = sigma_outliers(points.points, options, progress);
+  std::vector<bool> keep(outlier.size());
   std::size_t removed = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    keep[i] = dk[i] <= threshold;
-    removed += !keep[i];
+  for (std::size_t i = 0; i < outlier.size(); ++i) {
+    keep[i] = !outlier[i];
+    removed += outlier[i];
   }
   points.keep_if(keep);
   return removed;

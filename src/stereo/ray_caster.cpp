@@ -53,4 +53,10 @@ bool RayCaster::occluded(const Vec3& from, const Vec3& to, double relative_gap) 
   return impl_->tree.do_intersect(Kernel::Segment_3(to_cgal(from), to_cgal(end)));
 }
 
+void RayCaster::crossed_faces(const Vec3& from, const Vec3& to, std::vector<std::uint32_t>& faces) const {
+  std::vector<Iterator> hits;
+  impl_->tree.all_intersected_primitives(Kernel::Segment_3(to_cgal(from), to_cgal(to)), std::back_inserter(hits));
+  for (Iterator it : hits) faces.push_back(impl_->face_of[static_cast<std::size_t>(it - impl_->triangles.cbegin())]);
+}
+
 }  // namespace sharpmesh::detail

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "sharpmesh/types.h"
 
@@ -26,6 +27,8 @@ class RayCaster {
   /// True when the open segment from `from` to just before `to` (by `relative_gap`
   /// of its length) crosses the mesh: `to` is hidden from `from`.
   bool occluded(const Vec3& from, const Vec3& to, double relative_gap = 1e-5) const;
+  /// Appends to `faces` the mesh faces that the closed segment from-to touches.
+  void crossed_faces(const Vec3& from, const Vec3& to, std::vector<std::uint32_t>& faces) const;
 
  private:
   struct Impl;

@@ -162,6 +162,40 @@ PY
     $bin sample "$data/meshes/cube.off" -n 100 -o c.ply -q
     expect_error 1 "no/scene" "e.json" $bin eval-stereo "$data/meshes/cube.off" --scene no/scene --json e.json
     expect_error 2 "reference" "" $bin eval-stereo "$data/meshes/cube.off" ;;
+  stereo)  # issue 6: a generated scene end to end, with its intermediate outputs and report
+    $bin make-scene sc --views 6 --width 320 --height 240 --samples 12000 --seed 3 -q || fail "make-scene failed"
+    $bin stereo sc -o m.ply --soup soup.ply --tracks-out t.ply --report r.json -q || fail "stereo failed"
+    [[ -s m.ply && -s soup.ply && -s t.ply ]] || fail "outputs missing"
+    python3 - <<'PY' || fail "bad stereo report"
+import json
+r = json.load(open("r.json"))
+c = r["counts"]
+assert c["tracks"]["input"] > c["tracks"]["kept"] > 1000, c["tracks"]
+assert c["soup"]["unique"] > c["soup"]["kept"] > 1000, c["soup"]
+assert c["mesh"]["facets"] > 1000, c["mesh"]
+assert [s["name"] for s in r["stages"]] == ["read", "tracks", "depth maps", "soup filters", "meshing", "write"], r["stages"]
+assert r["parameters"]["merge_distance"] == 0.001 and r["parameters"]["max_crossings"] == 5, r["parameters"]
+PY
+    $bin eval-stereo m.ply --scene sc --samples 20000 --json e.json -q || fail "eval-stereo failed"
+    python3 -c "import json; r=json.load(open('e.json'))['results'][0]; assert r['accuracy'][4] > 0.95 and r['completeness'][5] > 0.8, r" \
+      || fail "inaccurate or incomplete stereo mesh"
+    # A coarser mesh from the same soup: fewer facets.
+    $bin stereo sc -o coarse.ply --size 0.035 --distance 0.01 --report rc.json -q || fail "coarse stereo failed"
+    python3 -c "import json; a=json.load(open('r.json')); b=json.load(open('rc.json')); assert b['counts']['mesh']['facets'] < a['counts']['mesh']['facets'] / 3, (a['counts']['mesh'], b['counts']['mesh'])" \
+      || fail "--size/--distance do not coarsen" ;;
+  stereo-bad)
+    $bin make-scene sc --views 3 --width 64 --height 48 --samples 500 -q || fail "make-scene failed"
+    expect_error 1 "no/such" "m.ply" $bin stereo no/such -o m.ply
+    expect_error 2 "size bound" "m.ply" $bin stereo sc -o m.ply --size 0
+    expect_error 2 "cone angle" "m.ply" $bin stereo sc -o m.ply --min-cone-angle -1
+    cp sc/images/view_000.png keep.png
+    cp sc/images/view_001.png sc/images/view_000.png
+    printf 'not an image' > sc/images/view_001.png
+    expect_error 1 "view_001.png" "m.ply" $bin stereo sc -o m.ply
+    rm sc/images/view_002.png
+    cp keep.png sc/images/view_001.png
+    expect_error 1 "view_002.png" "m.ply" $bin stereo sc -o m.ply
+    expect_error 1 "view_002.png" "m.ply" $bin stereo sc -o m.ply --images sc/images ;;
   laz-refused) printf 'LASF' > c.laz; expect_error 1 "LAZ" "out.ply" $bin clean c.laz -o out.ply ;;
   features)
     $bin sample "$data/meshes/cube.off" -n 20000 --seed 3 -o s.ply -q || fail "sample failed"

@@ -1,0 +1,262 @@
+// The multi-view stereo pipeline of thesis Ch. 6 on inputs whose answer is
+// known: merging and cone angles, smoothing of a noisy plane, the contour
+// score, a box edge becoming a constrained edge, a wall removed by the lines
+// of sight through it, the soup oracle's centroid, and a generated scene end
+// to end against its ground truth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "fixtures.h"
+#include "sharpmesh/errors.h"
+#include "sharpmesh/eval.h"
+#include "sharpmesh/io.h"
+#include "sharpmesh/scene.h"
+#include "sharpmesh/stereo_io.h"
+#include "sharpmesh/stereo_reconstruct.h"
+
+using namespace sharpmesh;
+
+namespace {
+
+/// A camera at `center` looking down +z (world axes = camera axes), 320x240, f = 300.
+Camera camera_at(const Vec3& center) {
+  Camera c;
+  c.image_name = "view.png";
+  c.width = 320;
+  c.height = 240;
+  c.fx = c.fy = 300;
+  c.cx = 160;
+  c.cy = 120;
+  c.translation = {-center[0], -center[1], -center[2]};
+  return c;
+}
+
+/// Generates a scene in `folder` and reads its cameras and tracks back.
+StereoModel generated_scene(const std::string& folder, int views, int width, int height, std::size_t samples) {
+  SceneOptions scene;
+  scene.views = views;
+  scene.width = width;
+  scene.height = height;
+  scene.samples = samples;
+  scene.seed = 4;
+  make_scene(folder, scene);
+  return read_stereo_model(folder);
+}
+
+Track track(const Vec3& p, std::vector<std::uint32_t> views) {
+  Track t;
+  t.position = p;
+  t.views = std::move(views);
+  return t;
+}
+
+}  // namespace
+
+TEST(TrackPreprocessing, MergesCloseTracksWithTheUnionOfTheirViews) {
+  std::vector<Track> tracks{track({0, 0, 0}, {0, 1}), track({0.001, 0, 0}, {1, 2}), track({1, 0, 0}, {0, 2})};
+  EXPECT_EQ(merge_tracks(tracks, 0.01), 1u);
+  ASSERT_EQ(tracks.size(), 2u);
+  EXPECT_EQ(tracks[0].views, (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_NEAR(tracks[0].position[0], 0.0005, 1e-12);
+  EXPECT_EQ(tracks[1].position[0], 1.0);
+  EXPECT_EQ(merge_tracks(tracks, 0.01), 0u);
+}
+
+TEST(TrackPreprocessing, ConeAngleIsTheWidestAngleBetweenLinesOfSight) {
+  EXPECT_NEAR(cone_angle({0, 0, 0}, {{1, 0, 0}, {0, 2, 0}}), M_PI / 2, 1e-12);
+  EXPECT_NEAR(cone_angle({0, 0, 0}, {{1, 0, 0}, {1, 0.1, 0}, {1, 0.05, 0}}), std::atan(0.1), 1e-12);
+  EXPECT_EQ(cone_angle({0, 0, 0}, {{1, 0, 0}}), 0.0);
+}
+
+TEST(TrackPreprocessing, GaussianJetSmoothingFlattensANoisyPlane) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::normal_distribution<double> noise(0, 0.01);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 4000; ++i) points.push_back({u(rng), u(rng), noise(rng)});
+  const auto rms_z = [](const std::vector<Vec3>& p) {
+    double s = 0;
+    for (const Vec3& q : p) s += q[2] * q[2];
+    return std::sqrt(s / p.size());
+  };
+  const double before = rms_z(points);
+  jet_smooth_gaussian(points, 85);
+  EXPECT_LT(rms_z(points), 0.3 * before);
+  EXPECT_THROW(jet_smooth_gaussian(points, 3), InvalidArgument);
+}
+
+TEST(TrackPreprocessing, SingleViewTracksAreRemovedAndNothingLeftIsAnError) {
+  StereoModel model;
+  model.cameras = {camera_at({0, 0, 0}), camera_at({1, 0, 0})};
+  for (int i = 0; i < 50; ++i) model.tracks.push_back(track({0.01 * i, 0, 5}, {0}));
+  model.tracks.push_back(track({0, 1, 5}, {0, 1}));
+  const TrackPreprocessStats stats = preprocess_tracks(model, {});
+  EXPECT_EQ(stats.removed_cone, 50u);
+  EXPECT_EQ(model.tracks.size(), 1u);
+  StereoModel empty = model;
+  for (Track& t : empty.tracks) t.views = {0};
+  std::vector<GreyImage> images(2, GreyImage{320, 240, std::vector<std::uint8_t>(320 * 240, 100)});
+  EXPECT_THROW(reconstruct_stereo(empty, images, {}), InvalidInput);
+}
+
+TEST(DepthMaps, AffineGapPenalty) {
+  const int w = 40, h = 10;
+  std::vector<std::uint8_t> contours(w * h, 0);
+  for (int x = 0; x < w; ++x) contours[5 * w + x] = 255;  // a horizontal contour on row 5
+  // Along the contour: every pixel matches.
+  EXPECT_DOUBLE_EQ(contour_edge_score(contours, w, h, {2.5, 5.5}, {12.5, 5.5}, 0.5, 2), 11);
+  // Far from it: one gap over the 11 pixels, o + 10 e.
+  EXPECT_DOUBLE_EQ(contour_edge_score(contours, w, h, {2.5, 0.5}, {12.5, 0.5}, 0.5, 2), -(0.5 + 10 * 2));
+  // Two gaps of 2 cost less than one gap of 4 (the affine penalty favours short gaps).
+  std::vector<std::uint8_t> broken = contours, holed = contours;
+  for (int x : {5, 6, 20, 21}) broken[5 * w + x] = 0;
+  for (int x : {5, 6, 7, 8}) holed[5 * w + x] = 0;
+  EXPECT_GT(contour_edge_score(broken, w, h, {0.5, 5.5}, {30.5, 5.5}, 0.5, 2),
+            contour_edge_score(holed, w, h, {0.5, 5.5}, {30.5, 5.5}, 0.5, 2));
+}
+
+TEST(DepthMaps, ABoxEdgeBecomesAConstrainedEdge) {
+  // A camera at the origin sees the plane z = 5 whose image has a vertical
+  // step edge at x = 160; tracks on the plane, some of them on the edge.
+  StereoModel model;
+  model.cameras = {camera_at({0, 0, 0})};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> px(5, 315), py(5, 235);
+  const auto on_plane = [](double x, double y) { return Vec3{(x - 160) * 5 / 300, (y - 120) * 5 / 300, 5}; };
+  while (model.tracks.size() < 400) {
+    const double x = px(rng);
+    if (std::abs(x - 160) > 3) model.tracks.push_back(track(on_plane(x, py(rng)), {0}));  // ctracks are the edge's own
+  }
+  std::vector<std::uint32_t> edge_tracks;
+  for (double y = 10; y < 235; y += 15) {
+    edge_tracks.push_back(static_cast<std::uint32_t>(model.tracks.size()));
+    model.tracks.push_back(track(on_plane(160.0, y), {0}));
+  }
+  std::vector<std::uint8_t> grey(320 * 240);
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x) grey[y * 320 + x] = x < 160 ? 40 : 200;
+  const DepthMapOptions options;
+  const std::vector<std::uint8_t> contours = detect_contours(grey, 320, 240, options);
+  const DepthMap map = build_depth_map(model, 0, contours, options);
+  EXPECT_EQ(map.tracks.size(), model.tracks.size());
+  // Every pair of consecutive edge tracks is a constraint...
+  for (std::size_t i = 0; i + 1 < edge_tracks.size(); ++i) {
+    const std::array<std::uint32_t, 2> a{edge_tracks[i], edge_tracks[i + 1]}, b{edge_tracks[i + 1], edge_tracks[i]};
+    EXPECT_TRUE(std::find(map.constraints.begin(), map.constraints.end(), a) != map.constraints.end() ||
+                std::find(map.constraints.begin(), map.constraints.end(), b) != map.constraints.end())
+        << "edge tracks " << i << " and " << i + 1 << " are not joined";
+  }
+  // ...and so no triangle crosses the edge along the chain.
+  ASSERT_FALSE(map.triangles.empty());
+  const double y_first = model.tracks[edge_tracks.front()].position[1], y_last = model.tracks[edge_tracks.back()].position[1];
+  for (const Triangle& t : map.triangles) {
+    bool left = false, right = false, beyond_chain = false;
+    for (std::uint32_t v : t) {
+      beyond_chain |= model.tracks[v].position[1] < y_first || model.tracks[v].position[1] > y_last;
+      left |= model.tracks[v].position[0] < -1e-9;
+      right |= model.tracks[v].position[0] > 1e-9;
+    }
+    EXPECT_FALSE(left && right && !beyond_chain) << "a triangle crosses the contour";
+  }
+}
+
+TEST(SoupFilters, ATrackSeenThroughAWallRemovesTheWall) {
+  // Camera 0 at the origin; a wall triangle at z = 5; six tracks at z = 10
+  // behind it, seen by camera 0 through it.
+  StereoModel model;
+  model.cameras = {camera_at({0, 0, 0}), camera_at({0.5, 0, 0})};
+  model.tracks = {track({-1, -1, 5}, {0, 1}), track({1, -1, 5}, {0, 1}), track({0, 1, 5}, {0, 1})};
+  for (int i = 0; i < 6; ++i) model.tracks.push_back(track({0.2 * (i % 3) - 0.2, 0.2 * (i / 3) - 0.2, 10}, {0}));
+  TriangleSoup soup;
+  for (const Track& t : model.tracks) soup.vertices.push_back(t.position);
+  soup.faces = {{0, 1, 2}};
+  const SightCrossings crossings = count_sight_crossings(soup, model, 0.0);
+  EXPECT_EQ(crossings.per_face[0], 6u);
+  // Six lines of sight through it, above t3 = 5: the wall goes.
+  SoupFilterOptions options;
+  TriangleSoup kept = soup;
+  const SoupFilterStats stats = filter_soup(kept, model, {}, options);
+  EXPECT_EQ(stats.removed_visibility, 1u);
+  EXPECT_TRUE(kept.faces.empty());
+  options.max_crossings = 6;
+  kept = soup;
+  EXPECT_EQ(filter_soup(kept, model, {}, options).output, 1u);
+}
+
+TEST(SoupMeshing, TheOracleAnswersTheCentroidOfAllIntersections) {
+  TriangleSoup soup;
+  soup.vertices = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {-1, -1, 1}, {1, -1, 1}, {0, 1, 1}};
+  soup.faces = {{0, 1, 2}, {3, 4, 5}};
+  Vec3 p;
+  ASSERT_TRUE(soup_segment_intersection(soup, {0, 0, -1}, {0, 0, 2}, p));
+  EXPECT_NEAR(p[2], 0.5, 1e-12);
+  ASSERT_TRUE(soup_segment_intersection(soup, {0, 0, -1}, {0, 0, 0.5}, p));
+  EXPECT_NEAR(p[2], 0.0, 1e-12);
+  EXPECT_FALSE(soup_segment_intersection(soup, {5, 5, -1}, {5, 5, 2}, p));
+}
+
+TEST(SoupMeshing, AFlatSoupGivesAFlatMeshCoveringIt) {
+  TriangleSoup soup;
+  const int n = 20;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) soup.vertices.push_back({static_cast<double>(i) / n, static_cast<double>(j) / n, 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto v = static_cast<std::uint32_t>(j * (n + 1) + i);
+      soup.faces.push_back({v, v + 1, v + n + 2});
+      soup.faces.push_back({v, v + n + 2, v + n + 1});
+    }
+  SoupMeshingOptions options;
+  options.size = 0.05;
+  options.distance = 0.01;
+  const SoupMeshingResult result = mesh_soup(soup, options);
+  ASSERT_GT(result.mesh.faces.size(), 100u);
+  double area = 0;
+  for (const Vec3& v : result.mesh.vertices) {
+    EXPECT_NEAR(v[2], 0.0, 1e-9);
+    EXPECT_GE(v[0], -1e-9);
+    EXPECT_LE(v[0], 1 + 1e-9);
+  }
+  for (const Triangle& f : result.mesh.faces) {
+    const Vec3 normal = cross(result.mesh.vertices[f[1]] - result.mesh.vertices[f[0]], result.mesh.vertices[f[2]] - result.mesh.vertices[f[0]]);
+    area += 0.5 * norm(normal);
+    EXPECT_GT(normal[2], 0) << "facets are oriented like the soup";
+  }
+  EXPECT_GT(area, 0.8);
+  EXPECT_LT(area, 1.0 + 1e-9);
+  options.size = 1e-6;
+  EXPECT_THROW(mesh_soup(soup, options), InvalidArgument);
+  EXPECT_THROW(mesh_soup(TriangleSoup{}, {}), InvalidInput);
+}
+
+TEST(StereoReconstruction, AGeneratedSceneIsReconstructedAccuratelyAndCompletely) {
+  test::TempDir dir;
+  StereoModel model = generated_scene(dir.path("scene"), 6, 320, 240, 12000);
+  const std::vector<GreyImage> images = read_grey_images(model, dir.path("scene/images"));
+  const StereoReconstruction r = reconstruct_stereo(model, images, {});
+  EXPECT_GT(r.tracks.removed_distance + r.removed_track_photo, 0u) << "the scene's outliers are filtered";
+  EXPECT_GT(r.contour_edges, 0u);
+  ASSERT_GT(r.meshing.mesh.faces.size(), 1000u);
+  const SurfaceMesh truth = read_mesh(dir.path("scene/ground_truth.ply"));
+  StereoEvalOptions eval;
+  eval.samples = 20000;
+  const StereoEvaluation e = evaluate_stereo(r.meshing.mesh, truth, model.cameras, eval);
+  const std::size_t one_percent = 4;  // thresholds 0.05%, 0.1%, 0.2%, 0.5%, 1%, ...
+  ASSERT_DOUBLE_EQ(eval.thresholds[one_percent], 0.01);
+  EXPECT_GT(e.accuracy[one_percent], 0.97);
+  EXPECT_GT(e.completeness[one_percent], 0.75);
+}
+
+TEST(StereoReconstruction, ImagesOfTheWrongSizeAreRefusedByName) {
+  test::TempDir dir;
+  StereoModel model = generated_scene(dir.path("scene"), 3, 64, 48, 500);
+  model.cameras[1].width = 80;
+  const std::string message = test::error_of([&] { read_grey_images(model, dir.path("scene/images")); });
+  EXPECT_NE(message.find("view_001.png"), std::string::npos) << message;
+  EXPECT_NE(message.find("64x48"), std::string::npos) << message;
+  StereoModel broken = read_stereo_model(dir.path("scene"));
+  broken.tracks[0].views.push_back(17);
+  EXPECT_THROW(broken.validate("model"), InvalidInput);
+}
