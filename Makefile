@@ -40,6 +40,7 @@ bench: data
 	@bench/run $(BUILD_DIR)
 	@bench/accuracy_vs_size $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)
+	@bench/stereo_study $(BUILD_DIR)
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_DIR)
