@@ -38,7 +38,6 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
   {
     StageTimer timer(result.stages, "depth maps");
     std::vector<DepthMap> maps(model.cameras.size());
-    std::size_t done = 0;
     report_progress(progress, "depth maps", 0.0);
     // One image per task: each builds its own triangulations.
     tbb::parallel_for(std::size_t(0), model.cameras.size(), [&](std::size_t v) {
@@ -46,8 +45,7 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
           detect_contours(images[v].pixels, images[v].width, images[v].height, options.depth_maps);
       maps[v] = build_depth_map(model, static_cast<std::uint32_t>(v), contours, options.depth_maps);
     });
-    done = model.cameras.size();
-    report_progress(progress, "depth maps", done ? 1.0 : 0.0);
+    report_progress(progress, "depth maps", 1.0);
     for (const Track& t : model.tracks) result.soup.vertices.push_back(t.position);
     for (const DepthMap& map : maps) {
       result.contour_tracks += map.ctracks.size();

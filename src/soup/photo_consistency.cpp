@@ -6,24 +6,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "soup/grey_sampling.h"
 #include "sharpmesh/stereo_reconstruct.h"
 
 namespace sharpmesh {
 namespace {
-
-/// Bilinear intensity at a pixel position (COLMAP convention: pixel centres
-/// at half-integers); false outside the image.
-bool sample(const GreyImage& image, const Vec2& pixel, double& value) {
-  const double x = pixel[0] - 0.5, y = pixel[1] - 0.5;
-  if (!(x >= 0 && y >= 0 && x <= image.width - 1 && y <= image.height - 1)) return false;
-  const int x0 = std::min(static_cast<int>(x), image.width - 2 < 0 ? 0 : image.width - 2);
-  const int y0 = std::min(static_cast<int>(y), image.height - 2 < 0 ? 0 : image.height - 2);
-  const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
-  const double fx = x - x0, fy = y - y0;
-  const auto at = [&](int c, int r) { return static_cast<double>(image.pixels[static_cast<std::size_t>(r) * image.width + c]); };
-  value = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) + fy * ((1 - fx) * at(x0, y1) + fx * at(x1, y1));
-  return true;
-}
 
 double projected_area(const std::array<Vec2, 3>& q) {
   return 0.5 * std::abs((q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[2][0] - q[0][0]) * (q[1][1] - q[0][1]));
@@ -64,7 +51,7 @@ double triangle_ncc(const std::array<Vec3, 3>& triangle, const std::vector<std::
     for (const Vec3& p : points) {
       Vec2 q;
       double value;
-      if (!model.cameras[v].project(p, q) || !sample(images[v], q, value)) return false;
+      if (!model.cameras[v].project(p, q) || !detail::sample_bilinear(images[v], q, value)) return false;
       values.push_back(value);
     }
     return true;

@@ -10,22 +10,19 @@
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
+#include "soup/grey_sampling.h"
 
 namespace sharpmesh {
 namespace {
 
-/// The (2h+1)^2 window around a pixel, bilinear, COLMAP convention; false near the border.
+/// The (2h+1)^2 window around a pixel, bilinear; false when it leaves the image.
 bool window(const GreyImage& image, const Vec2& center, int h, std::vector<double>& values) {
   values.clear();
-  const double x0 = center[0] - 0.5, y0 = center[1] - 0.5;
-  if (!(x0 - h >= 0 && y0 - h >= 0 && x0 + h < image.width - 1 && y0 + h < image.height - 1)) return false;
+  double value;
   for (int dy = -h; dy <= h; ++dy)
     for (int dx = -h; dx <= h; ++dx) {
-      const double x = x0 + dx, y = y0 + dy;
-      const int xi = static_cast<int>(x), yi = static_cast<int>(y);
-      const double fx = x - xi, fy = y - yi;
-      const auto at = [&](int c, int r) { return static_cast<double>(image.pixels[static_cast<std::size_t>(r) * image.width + c]); };
-      values.push_back((1 - fy) * ((1 - fx) * at(xi, yi) + fx * at(xi + 1, yi)) + fy * ((1 - fx) * at(xi, yi + 1) + fx * at(xi + 1, yi + 1)));
+      if (!detail::sample_bilinear(image, {center[0] + dx, center[1] + dy}, value)) return false;
+      values.push_back(value);
     }
   return true;
 }
