@@ -1,6 +1,8 @@
 // sharpmesh clean CLOUD -o OUT: the toolbox of the thesis's Appendix A, in
 // the order of its pipeline (Fig. A.2): outliers, simplification, smoothing,
 // normal estimation, normal orientation.
+#include <cmath>
+#include <optional>
 #include <cstdio>
 
 #include "cli.h"
@@ -17,7 +19,7 @@ Command add_clean(CLI::App& app) {
     int outlier_k = 24;
     double outlier_sigmas = -1;
     int sigma_k = 150;
-    double grid_cell = -1;
+    std::optional<double> grid_cell;  ///< multiples of the average spacing
     double random_percentage = -1;
     int smooth_k = 0;
     std::string normals;
@@ -62,7 +64,7 @@ Command add_clean(CLI::App& app) {
     check_output(o->output, "points");
     check_output(common->report, "report");
     if (o->outlier_sigmas != -1 && !(o->outlier_sigmas > 0)) throw InvalidArgument("--outliers-sigma must be positive");
-    if (o->grid_cell != -1 && !(o->grid_cell > 0)) throw InvalidArgument("--grid must be a positive multiple of the average spacing");
+    if (o->grid_cell && !(*o->grid_cell > 0 && std::isfinite(*o->grid_cell))) throw InvalidArgument("--grid must be a positive multiple of the average spacing");
     if (o->smooth_k != 0 && o->smooth_k < 6) throw InvalidArgument("--smooth needs at least 6 neighbours to fit a quadric");
     ProgressPrinter printer(common->quiet);
     const Progress progress = printer.callback();
@@ -83,10 +85,10 @@ Command add_clean(CLI::App& app) {
       StageTimer stage(stages, "outliers-sigma");
       counts["removed_outliers_sigma"] = remove_outliers_sigma(points, {o->sigma_k, o->outlier_sigmas}, progress);
     }
-    if (o->grid_cell > 0) {
+    if (o->grid_cell) {
       StageTimer stage(stages, "grid simplification");
       const double spacing = average_spacing(points, 6, progress);
-      counts["removed_grid"] = grid_simplify(points, o->grid_cell * spacing);
+      counts["removed_grid"] = grid_simplify(points, *o->grid_cell * spacing);
     }
     if (o->random_percentage >= 0) {
       StageTimer stage(stages, "random simplification");
@@ -119,7 +121,7 @@ Command add_clean(CLI::App& app) {
                                   {"parameters",
                                    {{"outliers", o->outlier_percentage}, {"outlier_k", o->outlier_k},
                                     {"outliers_sigma", o->outlier_sigmas}, {"sigma_k", o->sigma_k},
-                                    {"grid_cell_in_average_spacings", o->grid_cell}, {"random", o->random_percentage},
+                                    {"grid_cell_in_average_spacings", o->grid_cell ? nlohmann::json(*o->grid_cell) : nlohmann::json()}, {"random", o->random_percentage},
                                     {"seed", o->seed}, {"smooth_k", o->smooth_k}, {"normals", o->normals},
                                     {"normal_k", o->normal_k}, {"orient", o->orient}, {"orient_k", o->orient_k}, {"orient_method", o->orient_method}}},
                                   {"counts", counts},

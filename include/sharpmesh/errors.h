@@ -2,10 +2,23 @@
 // exit codes: InvalidArgument -> 2, everything else -> 1.
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace sharpmesh {
+
+/// A number for a message: 6 significant digits (1e-09, not 0.000000).
+inline std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+template <class Integer, std::enable_if_t<std::is_integral_v<Integer>, int> = 0>
+std::string format_number(Integer value) {
+  return std::to_string(value);
+}
 
 /// Base class of every error the library throws on purpose.
 class Error : public std::runtime_error {

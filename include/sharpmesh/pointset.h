@@ -43,6 +43,10 @@ std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& o
 std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOutlierOptions& options = {},
                                  const Progress& progress = {});
 
+/// Removes points at exactly the same position as an earlier one (merged
+/// scans repeat them; they make k-neighbourhoods degenerate). Returns the count.
+std::size_t remove_duplicate_points(PointSet& points);
+
 /// Keeps one point per cell of a regular grid of the given cell size (App. A.5).
 std::size_t grid_simplify(PointSet& points, double cell_size);
 

@@ -58,7 +58,8 @@ struct ReconstructResult {
   double estimated_facets = 0;
   RefinementCriteria criteria;
   std::size_t input_points = 0;
-  std::size_t used_points = 0;       ///< after removing unorientable points
+  std::size_t duplicate_points = 0;  ///< removed: same position as an earlier point
+  std::size_t used_points = 0;       ///< after removing duplicated and unorientable points
   bool normals_estimated = false;
   std::string normal_source;         ///< "input", "cvcm", "jet" or "pca"
   FeatureResult features;            ///< when extracted (graph only when given)

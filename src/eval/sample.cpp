@@ -10,8 +10,8 @@ namespace sharpmesh {
 
 void SampleOptions::check() const {
   if (count == 0) throw InvalidArgument("sample count must be positive");
-  if (count > 2'000'000'000ull) throw InvalidArgument("sample count " + std::to_string(count) + " is too large");
-  if (!(noise >= 0 && noise < 1)) throw InvalidArgument("noise must be in [0, 1) of the diagonal (got " + std::to_string(noise) + ")");
+  if (count > 2'000'000'000ull) throw InvalidArgument("sample count " + format_number(count) + " is too large");
+  if (!(noise >= 0 && noise < 1)) throw InvalidArgument("noise must be in [0, 1) of the diagonal (got " + format_number(noise) + ")");
 }
 
 double surface_area(const SurfaceMesh& mesh) {
@@ -35,7 +35,7 @@ PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options, std:
   for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
     const Triangle& f = mesh.faces[i];
     for (std::uint32_t v : f)
-      if (v >= mesh.vertices.size()) throw InvalidInput("mesh face " + std::to_string(i) + " refers to a missing vertex");
+      if (v >= mesh.vertices.size()) throw InvalidInput("mesh face " + format_number(i) + " refers to a missing vertex");
     total += 0.5 * norm(cross(mesh.vertices[f[1]] - mesh.vertices[f[0]], mesh.vertices[f[2]] - mesh.vertices[f[0]]));
     cumulative[i] = total;
   }

@@ -8,7 +8,7 @@
 namespace sharpmesh {
 
 std::vector<Polyline> sharp_edges(const SurfaceMesh& mesh, double angle_deg) {
-  if (!(angle_deg > 0 && angle_deg < 180)) throw InvalidArgument("sharp angle must be in (0, 180) degrees (got " + std::to_string(angle_deg) + ")");
+  if (!(angle_deg > 0 && angle_deg < 180)) throw InvalidArgument("sharp angle must be in (0, 180) degrees (got " + format_number(angle_deg) + ")");
   const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
   std::vector<Vec3> normals(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {

@@ -9,6 +9,7 @@
 #include <memory>
 
 
+#include "core/recentering.h"
 #include "features/feature_graph_builder.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
@@ -17,10 +18,10 @@ namespace sharpmesh {
 
 void FeatureOptions::check() const {
   auto positive = [](double v, const char* name) {
-    if (!(v > 0) || !std::isfinite(v)) throw InvalidArgument(std::string(name) + " must be positive (got " + std::to_string(v) + ")");
+    if (!(v > 0) || !std::isfinite(v)) throw InvalidArgument(std::string(name) + " must be positive (got " + format_number(v) + ")");
   };
   positive(offset_radius, "offset radius R");
-  if (offset_radius > 10) throw InvalidArgument("offset radius R is a fraction of the bounding-sphere radius: " + std::to_string(offset_radius) + " is too large");
+  if (offset_radius > 10) throw InvalidArgument("offset radius R is a fraction of the bounding-sphere radius: " + format_number(offset_radius) + " is too large");
   if (!(convolution_radius >= 0) || convolution_radius > 100) throw InvalidArgument("convolution radius must be a fraction of R in [0, 100] (0: automatic)");
   positive(t1, "t1");
   positive(t2, "t2");
@@ -94,11 +95,25 @@ double face_anisotropy(const std::vector<PointFeature>& features) {
   return anisotropy[3 * anisotropy.size() / 4];
 }
 
+FeatureResult extract_features_centred(const PointSet& input, const FeatureOptions& options, const Progress& progress);
+
 }  // namespace
 
 FeatureResult extract_features(const PointSet& input, const FeatureOptions& options, const Progress& progress) {
   options.check();
   check_point_set(input, 10, "feature extraction");
+  const detail::Recentering frame(input.points);
+  PointSet local = input;
+  frame.to_local(local.points);
+  FeatureResult result = extract_features_centred(local, options, progress);
+  frame.to_world(result.graph.polylines);
+  for (Junction& j : result.graph.junctions) frame.to_world(j.position);
+  return result;
+}
+
+namespace {
+
+FeatureResult extract_features_centred(const PointSet& input, const FeatureOptions& options, const Progress& progress) {
   FeatureResult result;
   const BoundingBox box = bounding_box(input.points);
   const Vec3 center = box.center();
@@ -186,4 +201,5 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
   return result;
 }
 
+}  // namespace
 }  // namespace sharpmesh

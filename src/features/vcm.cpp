@@ -52,7 +52,7 @@ void add_tetrahedron(Matrix3& m, const Vec3& a, const Vec3& b, const Vec3& c) {
 }  // namespace
 
 std::vector<Matrix3> voronoi_covariance(const std::vector<Vec3>& points, double R, const Progress& progress) {
-  if (!(R > 0) || !std::isfinite(R)) throw InvalidArgument("offset radius R must be positive (got " + std::to_string(R) + ")");
+  if (!(R > 0) || !std::isfinite(R)) throw InvalidArgument("offset radius R must be positive (got " + format_number(R) + ")");
   if (points.size() < 4) throw InvalidInput("the Voronoi covariance needs at least 4 points");
   report_progress(progress, "voronoi covariance", 0.0);
   const BoundingBox box = bounding_box(points);
@@ -156,7 +156,7 @@ std::vector<Matrix3> voronoi_covariance(const std::vector<Vec3>& points, double 
 
 std::vector<Matrix3> convolve_covariance(const std::vector<Vec3>& points, const std::vector<Matrix3>& vcm, double r,
                                          const Progress& progress) {
-  if (!(r >= 0) || !std::isfinite(r)) throw InvalidArgument("convolution radius r must be non-negative (got " + std::to_string(r) + ")");
+  if (!(r >= 0) || !std::isfinite(r)) throw InvalidArgument("convolution radius r must be non-negative (got " + format_number(r) + ")");
   report_progress(progress, "convolution", 0.0);
   const detail::KnnIndex index(points);
   std::vector<Matrix3> out(points.size(), Matrix3{});

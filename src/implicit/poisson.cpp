@@ -34,6 +34,21 @@ class PoissonSurface final : public ImplicitSurface {
   Function function_;
 };
 
+/// True when no four samples span a volume (exact predicates).
+bool all_coplanar(const std::vector<PointWithNormal>& samples) {
+  const detail::Point3& a = samples[0].first;
+  std::size_t i = 1;
+  while (i < samples.size() && samples[i].first == a) ++i;
+  if (i == samples.size()) return true;
+  const detail::Point3& b = samples[i].first;
+  while (i < samples.size() && CGAL::collinear(a, b, samples[i].first)) ++i;
+  if (i == samples.size()) return true;
+  const detail::Point3& c = samples[i].first;
+  for (; i < samples.size(); ++i)
+    if (CGAL::orientation(a, b, c, samples[i].first) != CGAL::COPLANAR) return false;
+  return true;
+}
+
 }  // namespace
 
 std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const PoissonOptions& options, const Progress& progress) {
@@ -48,6 +63,8 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
     samples.emplace_back(detail::to_cgal(points.points[i]), detail::to_cgal_vector(n));
   }
   if (samples.size() < 4) throw InvalidInput("Poisson reconstruction: fewer than 4 points have a usable normal");
+  if (all_coplanar(samples))  // CGAL's Poisson needs a 3D Delaunay triangulation
+    throw InvalidInput("Poisson reconstruction: all points lie on one plane (or line); a surface cannot be reconstructed from a flat cloud");
   report_progress(progress, "poisson", 0.0);
   auto surface = std::make_unique<PoissonSurface>(std::move(samples));
   if (!surface->solve()) throw NumericalFailure("Poisson reconstruction: the linear solver failed");

@@ -21,7 +21,7 @@ class BinaryReader {
   T read(const char* what) {
     static_assert(std::is_trivially_copyable_v<T>);
     if (data_.size() - pos_ < sizeof(T))
-      throw InvalidInput(path_ + ": truncated at byte " + std::to_string(pos_) + " while reading " + what);
+      throw InvalidInput(path_ + ": truncated at byte " + format_number(pos_) + " while reading " + what);
     T value;
     std::memcpy(&value, data_.data() + pos_, sizeof(T));
     pos_ += sizeof(T);
@@ -31,7 +31,7 @@ class BinaryReader {
   std::string read_string(const char* what) {
     const std::size_t end = data_.find('\0', pos_);
     if (end == std::string_view::npos)
-      throw InvalidInput(path_ + ": truncated at byte " + std::to_string(pos_) + " while reading " + what);
+      throw InvalidInput(path_ + ": truncated at byte " + format_number(pos_) + " while reading " + what);
     std::string s(data_.substr(pos_, end - pos_));
     pos_ = end + 1;
     return s;
@@ -40,7 +40,7 @@ class BinaryReader {
   /// (guards allocations against absurd counts in corrupt headers).
   void expect(std::uint64_t count, std::size_t record_size, const char* what) const {
     if (record_size > 0 && count > (data_.size() - pos_) / record_size)
-      throw InvalidInput(path_ + ": " + what + " count " + std::to_string(count) + " exceeds the file size (truncated or corrupt)");
+      throw InvalidInput(path_ + ": " + what + " count " + format_number(count) + " exceeds the file size (truncated or corrupt)");
   }
   bool at_end() const { return pos_ == data_.size(); }
   std::size_t position() const { return pos_; }

@@ -35,7 +35,7 @@ constexpr double kMaxDistortionPixels = 0.5;
 
 void refuse_distortion(const std::string& where, double displacement) {
   if (displacement > kMaxDistortionPixels)
-    throw InvalidInput(where + ": radial distortion moves the image corners by " + std::to_string(displacement) +
+    throw InvalidInput(where + ": radial distortion moves the image corners by " + format_number(displacement) +
                        " px; undistort the images first (only pinhole cameras are supported)");
 }
 
@@ -56,8 +56,8 @@ StereoModel read_bundler(const std::string& out_path, const std::string& list_pa
   const auto num_cameras = in.integer("camera count", 0, 1 << 24);
   const auto num_points = in.integer("point count", 0, INT64_C(1) << 32);
   if (static_cast<std::size_t>(num_cameras) != images.size())
-    throw InvalidInput(out_path + ": has " + std::to_string(num_cameras) + " cameras but " + list_path + " lists " +
-                       std::to_string(images.size()) + " images");
+    throw InvalidInput(out_path + ": has " + format_number(num_cameras) + " cameras but " + list_path + " lists " +
+                       format_number(images.size()) + " images");
   const std::string image_folder = folder_of(list_path);
   StereoModel model;
   std::vector<std::int64_t> index_of(static_cast<std::size_t>(num_cameras), -1);  // unregistered cameras (f = 0) are dropped

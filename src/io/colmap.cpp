@@ -66,7 +66,7 @@ Intrinsics to_pinhole(const CameraModelInfo& model, std::uint64_t width, std::ui
         throw InvalidInput(where + ": camera model " + model.name +
                            " has non-zero distortion; undistort the images first (colmap image_undistorter) and use its sparse model");
   if (width == 0 || height == 0 || width > (1u << 20) || height > (1u << 20))
-    throw InvalidInput(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) + " is invalid");
+    throw InvalidInput(where + ": image size " + format_number(width) + "x" + format_number(height) + " is invalid");
   Intrinsics k;
   k.width = static_cast<int>(width);
   k.height = static_cast<int>(height);
@@ -100,7 +100,7 @@ StereoModel assemble(const std::string& folder, const std::map<std::uint32_t, In
   for (const RawImage& image : images) {
     const std::string where = folder + ": image " + std::to_string(image.id) + " (" + image.name + ")";
     const auto k = cameras.find(image.camera_id);
-    if (k == cameras.end()) throw InvalidInput(where + ": refers to camera " + std::to_string(image.camera_id) + ", which is not in cameras");
+    if (k == cameras.end()) throw InvalidInput(where + ": refers to camera " + format_number(image.camera_id) + ", which is not in cameras");
     if (!index_of_image.emplace(image.id, static_cast<std::uint32_t>(model.cameras.size())).second)
       throw InvalidInput(where + ": image id used twice");
     Camera c;
@@ -129,11 +129,11 @@ StereoModel assemble(const std::string& folder, const std::map<std::uint32_t, In
     for (const auto& [image_id, point2d] : p.track) {
       const auto it = index_of_image.find(image_id);
       if (it == index_of_image.end())
-        throw InvalidInput(folder + ": point " + std::to_string(i) + " refers to image " + std::to_string(image_id) + ", which is not in images");
+        throw InvalidInput(folder + ": point " + format_number(i) + " refers to image " + format_number(image_id) + ", which is not in images");
       const RawImage& image = images[it->second];
       if (point2d >= image.points2d.size())
-        throw InvalidInput(folder + ": point " + std::to_string(i) + " refers to observation " + std::to_string(point2d) + " of image " +
-                           std::to_string(image_id) + ", which has " + std::to_string(image.points2d.size()));
+        throw InvalidInput(folder + ": point " + format_number(i) + " refers to observation " + format_number(point2d) + " of image " +
+                           format_number(image_id) + ", which has " + format_number(image.points2d.size()));
       if (std::find(t.views.begin(), t.views.end(), it->second) != t.views.end()) continue;  // one observation per view
       t.views.push_back(it->second);
       t.pixels.push_back(image.points2d[point2d]);
@@ -180,13 +180,15 @@ std::map<std::uint32_t, Intrinsics> read_cameras_text(const std::string& path) {
     io::next_token(rest, id_token);
     if (!io::next_token(rest, model_token)) throw InvalidInput(where + ": expected CAMERA_ID MODEL WIDTH HEIGHT PARAMS[]");
     std::int64_t id;
-    if (!io::parse_integer(id_token, id) || id < 0) throw InvalidInput(where + ": invalid camera id");
+    if (!io::parse_integer(id_token, id) || id < 0 || id > 4294967295LL) throw InvalidInput(where + ": invalid camera id");
     const CameraModelInfo* model = model_by_name(model_token);
     if (!model) throw InvalidInput(where + ": unknown camera model '" + std::string(model_token) + "'");
     const std::vector<double> values = parse_numbers(rest, where);
     if (values.size() != static_cast<std::size_t>(model->params) + 2)
-      throw InvalidInput(where + ": " + model->name + " needs WIDTH HEIGHT and " + std::to_string(model->params) + " parameters");
-    if (values[0] < 0 || values[1] < 0) throw InvalidInput(where + ": negative image size");
+      throw InvalidInput(where + ": " + model->name + " needs WIDTH HEIGHT and " + format_number(model->params) + " parameters");
+    for (double size : {values[0], values[1]})
+      if (!(size >= 0 && size <= 2147483647.0) || size != std::floor(size))
+        throw InvalidInput(where + ": invalid image size (expected WIDTH and HEIGHT in pixels)");
     const std::vector<double> params(values.begin() + 2, values.end());
     cameras[static_cast<std::uint32_t>(id)] =
         to_pinhole(*model, static_cast<std::uint64_t>(values[0]), static_cast<std::uint64_t>(values[1]), params, where);
@@ -222,7 +224,7 @@ std::vector<RawImage> read_images_text(const std::string& path) {
     std::string_view points_line;
     if (cursor.next(points_line)) {
       const std::vector<double> p = parse_numbers(points_line, path + ": line " + std::to_string(cursor.line_number()));
-      if (p.size() % 3 != 0) throw InvalidInput(path + ": line " + std::to_string(cursor.line_number()) + ": POINTS2D must be triples X Y POINT3D_ID");
+      if (p.size() % 3 != 0) throw InvalidInput(path + ": line " + format_number(cursor.line_number()) + ": POINTS2D must be triples X Y POINT3D_ID");
       for (std::size_t i = 0; i < p.size(); i += 3) image.points2d.push_back({p[i], p[i + 1]});
     }
     images.push_back(std::move(image));
@@ -264,7 +266,7 @@ std::map<std::uint32_t, Intrinsics> read_cameras_binary(const std::string& path)
     const auto id = in.read<std::uint32_t>("a camera id");
     const auto model_id = in.read<std::int32_t>("a camera model");
     const CameraModelInfo* model = model_by_id(model_id);
-    if (!model) throw InvalidInput(where + ": unknown camera model id " + std::to_string(model_id));
+    if (!model) throw InvalidInput(where + ": unknown camera model id " + format_number(model_id));
     const auto width = in.read<std::uint64_t>("a width");
     const auto height = in.read<std::uint64_t>("a height");
     std::vector<double> params(static_cast<std::size_t>(model->params));
@@ -474,7 +476,7 @@ StereoModel read_colmap_fused(const std::string& ply_path, const std::vector<Cam
   BinaryReader in(data, vis_path);
   const auto count = in.read<std::uint64_t>("the point count");
   if (count != ply.points.size())
-    throw InvalidInput(vis_path + ": lists " + std::to_string(count) + " points but " + ply_path + " has " + std::to_string(ply.points.size()));
+    throw InvalidInput(vis_path + ": lists " + format_number(count) + " points but " + ply_path + " has " + format_number(ply.points.size()));
   StereoModel model;
   model.cameras = cameras;
   model.tracks.resize(ply.points.size());
@@ -487,8 +489,8 @@ StereoModel read_colmap_fused(const std::string& ply_path, const std::vector<Cam
     for (std::uint32_t k = 0; k < n; ++k) {
       const auto view = in.read<std::uint32_t>("a view index");
       if (view >= cameras.size())
-        throw InvalidInput(vis_path + ": point " + std::to_string(i) + " refers to image index " + std::to_string(view) + " but the model has " +
-                           std::to_string(cameras.size()) + " images");
+        throw InvalidInput(vis_path + ": point " + format_number(i) + " refers to image index " + format_number(view) + " but the model has " +
+                           format_number(cameras.size()) + " images");
       if (std::find(t.views.begin(), t.views.end(), view) == t.views.end()) t.views.push_back(view);
     }
   }

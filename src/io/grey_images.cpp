@@ -18,8 +18,8 @@ std::vector<GreyImage> read_grey_images(const StereoModel& model, const std::str
     const cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
     if (image.empty()) throw InvalidInput(path + ": not an image OpenCV can decode");
     if (image.cols != camera.width || image.rows != camera.height)
-      throw InvalidInput(path + ": the image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                         " but its camera says " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
+      throw InvalidInput(path + ": the image is " + format_number(image.cols) + "x" + format_number(image.rows) +
+                         " but its camera says " + format_number(camera.width) + "x" + format_number(camera.height));
     GreyImage grey;
     grey.width = image.cols;
     grey.height = image.rows;

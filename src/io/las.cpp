@@ -25,7 +25,7 @@ PointSet read_las(const std::string& path) {
   if (data.size() < 227 || data.compare(0, 4, "LASF") != 0) throw InvalidInput(path + ": not a LAS file (no 'LASF' signature)");
   const int major = static_cast<unsigned char>(data[24]), minor = static_cast<unsigned char>(data[25]);
   if (major != 1 || minor < 0 || minor > 4)
-    throw InvalidInput(path + ": LAS version " + std::to_string(major) + "." + std::to_string(minor) + " is not supported (1.0-1.4)");
+    throw InvalidInput(path + ": LAS version " + format_number(major) + "." + format_number(minor) + " is not supported (1.0-1.4)");
   const auto header_size = get<std::uint16_t>(data, 94);
   const auto point_offset = get<std::uint32_t>(data, 96);
   const auto format_byte = static_cast<unsigned char>(data[104]);
@@ -33,11 +33,11 @@ PointSet read_las(const std::string& path) {
   if (format_byte & 0xC0)
     throw InvalidInput(path + ": point records are compressed (LAZ); decompress them first (e.g. with laszip)");
   const int format = format_byte;
-  if (format > 10) throw InvalidInput(path + ": unknown LAS point data record format " + std::to_string(format));
+  if (format > 10) throw InvalidInput(path + ": unknown LAS point data record format " + format_number(format));
   static const int min_length[11] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
   static const int rgb_offset[11] = {-1, -1, 20, 28, -1, 28, -1, 30, 30, -1, 30};
   if (record_length < min_length[format])
-    throw InvalidInput(path + ": point record length " + std::to_string(record_length) + " is too short for format " + std::to_string(format));
+    throw InvalidInput(path + ": point record length " + format_number(record_length) + " is too short for format " + format_number(format));
   std::uint64_t count = get<std::uint32_t>(data, 107);
   if (minor >= 4 && header_size >= 375 && data.size() >= 375) {
     const auto count64 = get<std::uint64_t>(data, 247);
@@ -51,7 +51,7 @@ PointSet read_las(const std::string& path) {
     throw InvalidInput(path + ": offset to point data lies outside the file");
   const std::uint64_t available = (data.size() - point_offset) / record_length;
   if (count > available)
-    throw InvalidInput(path + ": header declares " + std::to_string(count) + " points but the file holds " + std::to_string(available) +
+    throw InvalidInput(path + ": header declares " + format_number(count) + " points but the file holds " + format_number(available) +
                        " (truncated)");
   PointSet out;
   out.points.resize(count);

@@ -34,7 +34,7 @@ SurfaceMesh read_obj(const std::string& path) {
         const std::int64_t n = static_cast<std::int64_t>(mesh.vertices.size());
         const std::int64_t index = k > 0 ? k - 1 : n + k;
         if (index < 0 || index >= n)
-          throw InvalidInput(where() + "vertex reference " + std::to_string(k) + " out of range (" + std::to_string(n) + " vertices so far)");
+          throw InvalidInput(where() + "vertex reference " + format_number(k) + " out of range (" + format_number(n) + " vertices so far)");
         polygon.push_back(index);
       }
       if (polygon.size() < 3) throw InvalidInput(where() + "face with fewer than 3 vertices");

@@ -45,7 +45,7 @@ SurfaceMesh read_off(const std::string& path, bool require_faces, PointSet* attr
   const std::int64_t nv = counts[0], nf = counts[1];
   // Every vertex and face needs at least one line of text: reject impossible counts before allocating.
   if (static_cast<std::uint64_t>(nv) > text.size() / 6 + 1 || static_cast<std::uint64_t>(nf) > text.size() / 6 + 1)
-    throw InvalidInput(path + ": header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+    throw InvalidInput(path + ": header declares " + format_number(nv) + " vertices and " + format_number(nf) +
                        " faces, more than the file can hold (truncated or corrupt)");
   if (require_faces && nf == 0) throw InvalidInput(path + ": OFF file has no faces (a mesh is expected)");
 
@@ -60,7 +60,7 @@ SurfaceMesh read_off(const std::string& path, bool require_faces, PointSet* attr
     const int wanted = has_normals ? 6 : 3;
     for (int k = 0; k < wanted; ++k)
       if (!next_token(rest, token) || !parse_double(token, v[k]))
-        throw InvalidInput(where() + "vertex " + std::to_string(i) + ": expected " + std::to_string(wanted) + " numbers");
+        throw InvalidInput(where() + "vertex " + format_number(i) + ": expected " + format_number(wanted) + " numbers");
     mesh.vertices[i] = {v[0], v[1], v[2]};
     check_finite(mesh.vertices[i], path, "line " + std::to_string(cursor.line_number()));
     if (attributes && has_normals) attributes->normals[i] = {v[3], v[4], v[5]};
@@ -72,15 +72,15 @@ SurfaceMesh read_off(const std::string& path, bool require_faces, PointSet* attr
     rest = next_content("all faces are read");
     std::int64_t n = 0;
     if (!next_token(rest, token) || !parse_integer(token, n) || n < 3 || n > 1000000)
-      throw InvalidInput(where() + "face " + std::to_string(i) + ": invalid vertex count");
+      throw InvalidInput(where() + "face " + format_number(i) + ": invalid vertex count");
     std::vector<std::uint32_t> polygon(static_cast<std::size_t>(n));
     for (auto& index : polygon) {
       std::int64_t k = -1;
       if (!next_token(rest, token) || !parse_integer(token, k))
-        throw InvalidInput(where() + "face " + std::to_string(i) + ": expected " + std::to_string(n) + " vertex indices");
+        throw InvalidInput(where() + "face " + format_number(i) + ": expected " + format_number(n) + " vertex indices");
       if (k < 0 || k >= nv)
-        throw InvalidInput(where() + "face " + std::to_string(i) + ": vertex index " + std::to_string(k) + " out of range (" +
-                           std::to_string(nv) + " vertices)");
+        throw InvalidInput(where() + "face " + format_number(i) + ": vertex index " + format_number(k) + " out of range (" +
+                           format_number(nv) + " vertices)");
       index = static_cast<std::uint32_t>(k);
     }
     for (std::size_t k = 1; k + 1 < polygon.size(); ++k) mesh.faces.push_back({polygon[0], polygon[k], polygon[k + 1]});

@@ -138,7 +138,7 @@ class ValueReader {
     if (encoding_ == Encoding::Ascii) return read_ascii(element, index);
     const std::size_t size = scalar_size(type);
     if (pos_ + size > data_.size())
-      throw InvalidInput(path_ + ": file ends inside " + element + " " + std::to_string(index) + " (truncated binary data)");
+      throw InvalidInput(path_ + ": file ends inside " + element + " " + format_number(index) + " (truncated binary data)");
     unsigned char bytes[8];
     std::memcpy(bytes, data_.data() + pos_, size);
     pos_ += size;
@@ -161,15 +161,15 @@ class ValueReader {
     if (encoding_ != Encoding::Ascii) return;
     do {
       if (!lines_.next(line_))
-        throw InvalidInput(path_ + ": file ends before " + element + " " + std::to_string(index) + " (truncated)");
+        throw InvalidInput(path_ + ": file ends before " + element + " " + format_number(index) + " (truncated)");
     } while (strip_comment(line_).empty());
   }
   void end_record(const char* element, std::uint64_t index) {
     if (encoding_ != Encoding::Ascii) return;
     std::string_view token;
     if (next_token(line_, token))
-      throw InvalidInput(path_ + ": line " + std::to_string(lines_.line_number()) + ": extra values in " + element +
-                         " " + std::to_string(index));
+      throw InvalidInput(path_ + ": line " + format_number(lines_.line_number()) + ": extra values in " + element +
+                         " " + format_number(index));
   }
   std::size_t remaining_bytes() const { return data_.size() - pos_; }
 
@@ -178,10 +178,10 @@ class ValueReader {
     std::string_view token;
     double value = 0;
     if (!next_token(line_, token))
-      throw InvalidInput(path_ + ": line " + std::to_string(lines_.line_number()) + ": too few values in " + element +
-                         " " + std::to_string(index));
+      throw InvalidInput(path_ + ": line " + format_number(lines_.line_number()) + ": too few values in " + element +
+                         " " + format_number(index));
     if (!parse_double(token, value))
-      throw InvalidInput(path_ + ": line " + std::to_string(lines_.line_number()) + ": '" + std::string(token) +
+      throw InvalidInput(path_ + ": line " + format_number(lines_.line_number()) + ": '" + std::string(token) +
                          "' is not a number");
     return value;
   }
@@ -223,14 +223,14 @@ PlyContents read_ply(const std::string& path) {
   for (const Element& e : header.elements) {
     const std::uint64_t per_record = header.encoding == Encoding::Ascii ? 2 : std::max<std::size_t>(1, e.min_record_size());
     if (e.count > data.size() / per_record + 1)
-      throw InvalidInput(path + ": header declares " + std::to_string(e.count) + " " + e.name +
-                         " elements but the file holds at most " + std::to_string(data.size() / per_record) +
+      throw InvalidInput(path + ": header declares " + format_number(e.count) + " " + e.name +
+                         " elements but the file holds at most " + format_number(data.size() / per_record) +
                          " (truncated or corrupt)");
     min_bytes += e.count * per_record;
   }
   if (header.encoding != Encoding::Ascii && min_bytes > data.size())
-    throw InvalidInput(path + ": file is truncated: the header needs at least " + std::to_string(min_bytes) +
-                       " bytes of data, the file has " + std::to_string(data.size()));
+    throw InvalidInput(path + ": file is truncated: the header needs at least " + format_number(min_bytes) +
+                       " bytes of data, the file has " + format_number(data.size()));
 
   PlyContents out;
   bool have_vertices = false;
@@ -243,7 +243,7 @@ PlyContents read_ply(const std::string& path) {
       have_vertices = true;
       ix = index_of(e, {"x"}); iy = index_of(e, {"y"}); iz = index_of(e, {"z"});
       if (ix < 0 || iy < 0 || iz < 0)
-        throw InvalidInput(path + ": line " + std::to_string(e.header_line) + ": vertex element lacks x, y or z");
+        throw InvalidInput(path + ": line " + format_number(e.header_line) + ": vertex element lacks x, y or z");
       inx = index_of(e, {"nx", "normal_x"}); iny = index_of(e, {"ny", "normal_y"}); inz = index_of(e, {"nz", "normal_z"});
       ir = index_of(e, {"red", "r", "diffuse_red"}); ig = index_of(e, {"green", "g", "diffuse_green"});
       ib = index_of(e, {"blue", "b", "diffuse_blue"});
@@ -256,7 +256,7 @@ PlyContents read_ply(const std::string& path) {
         if (e.properties[i].is_list && (e.properties[i].name == "vertex_indices" || e.properties[i].name == "vertex_index"))
           iface = static_cast<int>(i);
       if (iface < 0)
-        throw InvalidInput(path + ": line " + std::to_string(e.header_line) + ": face element lacks a vertex_indices list");
+        throw InvalidInput(path + ": line " + format_number(e.header_line) + ": face element lacks a vertex_indices list");
       out.faces.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(e.count, data.size() / 4 + 1)));
     }
     const char* label = is_vertex ? "vertex" : is_face ? "face" : e.name.c_str();
@@ -275,13 +275,13 @@ PlyContents read_ply(const std::string& path) {
         if (!(count >= 0) || count != std::floor(count) ||
             (header.encoding != Encoding::Ascii && count * scalar_size(prop.type) > reader.remaining_bytes()) ||
             count > 1e6)
-          throw InvalidInput(path + ": " + label + " " + std::to_string(n) + ": invalid list length " + std::to_string(count));
+          throw InvalidInput(path + ": " + label + " " + format_number(n) + ": invalid list length " + format_number(count));
         for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k) {
           const double v = reader.read(prop.type, label, n);
           if (static_cast<int>(p) == iface) {
             if (!(v >= 0) || v != std::floor(v) || v >= static_cast<double>(out.points.size()))
-              throw InvalidInput(path + ": face " + std::to_string(n) + ": vertex index " + std::to_string(v) +
-                                 " out of range (" + std::to_string(out.points.size()) + " vertices)");
+              throw InvalidInput(path + ": face " + format_number(n) + ": vertex index " + format_number(v) +
+                                 " out of range (" + format_number(out.points.size()) + " vertices)");
             polygon.push_back(static_cast<std::int64_t>(v));
           }
         }
@@ -304,7 +304,7 @@ PlyContents read_ply(const std::string& path) {
         }
       } else if (is_face) {
         if (polygon.size() < 3)
-          throw InvalidInput(path + ": face " + std::to_string(n) + ": has " + std::to_string(polygon.size()) + " vertices (needs 3 or more)");
+          throw InvalidInput(path + ": face " + format_number(n) + ": has " + format_number(polygon.size()) + " vertices (needs 3 or more)");
         for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
           out.faces.push_back({static_cast<std::uint32_t>(polygon[0]), static_cast<std::uint32_t>(polygon[k]),
                                static_cast<std::uint32_t>(polygon[k + 1])});

@@ -24,10 +24,10 @@ std::vector<Polyline> read_polylines_text(const std::string& path) {
     for (Vec3& p : polyline) {
       for (double& c : p)
         if (!next_token(rest, token) || !parse_double(token, c))
-          throw InvalidInput(where() + "expected " + std::to_string(n) + " points (x y z each)");
+          throw InvalidInput(where() + "expected " + format_number(n) + " points (x y z each)");
       check_finite(p, path, "line " + std::to_string(cursor.line_number()));
     }
-    if (next_token(rest, token)) throw InvalidInput(where() + "more values than the " + std::to_string(n) + " points announced");
+    if (next_token(rest, token)) throw InvalidInput(where() + "more values than the " + format_number(n) + " points announced");
     out.push_back(std::move(polyline));
   }
   return out;

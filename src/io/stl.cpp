@@ -49,8 +49,8 @@ SurfaceMesh read_stl(const std::string& path) {
   } else {
     if (data.compare(0, 5, "solid") != 0) {
       if (data.size() >= 84)
-        throw InvalidInput(path + ": binary STL declares " + std::to_string(count) + " triangles (" +
-                           std::to_string(84 + 50ull * count) + " bytes) but the file has " + std::to_string(data.size()) +
+        throw InvalidInput(path + ": binary STL declares " + format_number(count) + " triangles (" +
+                           format_number(84 + 50ull * count) + " bytes) but the file has " + format_number(data.size()) +
                            " bytes (truncated or corrupt)");
       throw InvalidInput(path + ": not an STL file (too short for binary, no 'solid' keyword)");
     }
@@ -65,13 +65,13 @@ SurfaceMesh read_stl(const std::string& path) {
         double v[3];
         for (double& c : v)
           if (!next_token(rest, token) || !parse_double(token, c))
-            throw InvalidInput(path + ": line " + std::to_string(cursor.line_number()) + ": expected 3 vertex coordinates");
-        if (corner == 3) throw InvalidInput(path + ": line " + std::to_string(cursor.line_number()) + ": facet with more than 3 vertices");
+            throw InvalidInput(path + ": line " + format_number(cursor.line_number()) + ": expected 3 vertex coordinates");
+        if (corner == 3) throw InvalidInput(path + ": line " + format_number(cursor.line_number()) + ": facet with more than 3 vertices");
         const Vec3 p{v[0], v[1], v[2]};
         check_finite(p, path, "line " + std::to_string(cursor.line_number()));
         face[corner++] = welder.add(p);
       } else if (keyword == "endloop") {
-        if (corner != 3) throw InvalidInput(path + ": line " + std::to_string(cursor.line_number()) + ": facet without 3 vertices");
+        if (corner != 3) throw InvalidInput(path + ": line " + format_number(cursor.line_number()) + ": facet without 3 vertices");
         mesh.faces.push_back(face);
         corner = 0;
       }

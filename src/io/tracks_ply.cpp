@@ -24,7 +24,7 @@ void write_tracks_ply(const std::string& path, const std::vector<Track>& tracks,
   io::BinaryWriter body;
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     const Track& t = tracks[i];
-    if (t.views.size() > 255) throw InvalidArgument(path + ": track " + std::to_string(i) + " has more than 255 views");
+    if (t.views.size() > 255) throw InvalidArgument(path + ": track " + format_number(i) + " has more than 255 views");
     for (double c : t.position) body.write<double>(c);
     for (std::uint8_t c : t.color) body.write<std::uint8_t>(c);
     body.write<std::uint8_t>(static_cast<std::uint8_t>(t.views.size()));

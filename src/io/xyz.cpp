@@ -23,17 +23,17 @@ PointSet read_xyz(const std::string& path) {
     while (next_token(rest, token)) {
       if (n == 7) break;
       if (!parse_double(token, v[n]))
-        throw InvalidInput(path + ": line " + std::to_string(cursor.line_number()) + ": '" + std::string(token) +
+        throw InvalidInput(path + ": line " + format_number(cursor.line_number()) + ": '" + std::string(token) +
                            "' is not a number");
       ++n;
     }
     if (n != 3 && n != 6)
-      throw InvalidInput(path + ": line " + std::to_string(cursor.line_number()) + ": expected 3 or 6 numbers (x y z [nx ny nz]), found " +
-                         (n == 7 ? std::string("more than 6") : std::to_string(n)));
+      throw InvalidInput(path + ": line " + format_number(cursor.line_number()) + ": expected 3 or 6 numbers (x y z [nx ny nz]), found " +
+                         (n == 7 ? std::string("more than 6") : format_number(n)));
     if (columns == 0) columns = n;
     if (n != columns)
-      throw InvalidInput(path + ": line " + std::to_string(cursor.line_number()) + ": " + std::to_string(n) +
-                         " numbers where the previous lines have " + std::to_string(columns));
+      throw InvalidInput(path + ": line " + format_number(cursor.line_number()) + ": " + format_number(n) +
+                         " numbers where the previous lines have " + format_number(columns));
     const Vec3 p{v[0], v[1], v[2]};
     check_finite(p, path, "line " + std::to_string(cursor.line_number()));
     out.points.push_back(p);

@@ -277,11 +277,11 @@ void check_features(const C3t3& c3t3, const SurfaceMesh& mesh, const std::map<Po
 
 void RefinementCriteria::check() const {
   if (!(angle > 0 && angle <= 30))
-    throw InvalidArgument("facet angle must be in (0, 30] degrees for refinement to terminate (got " + std::to_string(angle) + ")");
+    throw InvalidArgument("facet angle must be in (0, 30] degrees for refinement to terminate (got " + format_number(angle) + ")");
   if (!(edge_length > 0) || !std::isfinite(edge_length))
-    throw InvalidArgument("maximum edge length must be positive (got " + std::to_string(edge_length) + ")");
+    throw InvalidArgument("maximum edge length must be positive (got " + format_number(edge_length) + ")");
   if (!(distance > 0) || !std::isfinite(distance))
-    throw InvalidArgument("maximum surface distance must be positive (got " + std::to_string(distance) + ")");
+    throw InvalidArgument("maximum surface distance must be positive (got " + format_number(distance) + ")");
 }
 
 RefinementCriteria RefinementCriteria::from_spacing(double d_prime) {
@@ -296,9 +296,9 @@ void ImplicitMeshingOptions::check() const {
   criteria.check();
   if (!features.polylines.empty()) {
     if (!(features.ball_radius > 0) || !std::isfinite(features.ball_radius))
-      throw InvalidArgument("protecting-ball radius must be positive (got " + std::to_string(features.ball_radius) + ")");
+      throw InvalidArgument("protecting-ball radius must be positive (got " + format_number(features.ball_radius) + ")");
     if (!(features.gap_margin >= 1) || !std::isfinite(features.gap_margin))
-      throw InvalidArgument("gap margin must be at least 1 (got " + std::to_string(features.gap_margin) + ")");
+      throw InvalidArgument("gap margin must be at least 1 (got " + format_number(features.gap_margin) + ")");
     if (features.max_ball_radius != 0 && !(features.max_ball_radius >= features.ball_radius))
       throw InvalidArgument("maximum ball radius must be at least the ball radius");
   }
@@ -320,7 +320,7 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   const double sphere_area = 4 * M_PI * radius * radius;
   if (options.max_facets > 0 && estimate_facet_count(sphere_area, options.criteria) > 1e3 * options.max_facets)
     throw InvalidArgument("the meshing criteria are far too fine for the surface size (edge length " +
-                          std::to_string(options.criteria.edge_length) + " on a surface of radius " + std::to_string(radius) + ")");
+                          format_number(options.criteria.edge_length) + " on a surface of radius " + format_number(radius) + ")");
 
   const detail::Point3 center = detail::to_cgal(surface.bounding_center());
   std::function<double(const detail::Point3&)> function = [&surface](const detail::Point3& p) {
@@ -379,10 +379,10 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   report_progress(progress, "refinement", 1.0);
   if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED && budget_from_data)
     throw NumericalFailure("Delaunay refinement passed 8x the facet count the data suggests (" +
-                           std::to_string(static_cast<long long>(options.expected_facets)) +
+                           format_number(options.expected_facets) +
                            "): the implicit surface is far larger than the sampled one (inconsistent normals, or a thin or open surface)");
   if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED)
-    throw NumericalFailure("Delaunay refinement reached the vertex budget of " + std::to_string(max_vertices) +
+    throw NumericalFailure("Delaunay refinement reached the vertex budget of " + format_number(max_vertices) +
                            " (raise --max-facets or delta)");
 
   std::map<PointKey, std::uint32_t> index_of;

@@ -120,8 +120,8 @@ std::shared_ptr<SoupData> build_soup_data(const TriangleSoup& soup) {
 
 void SoupMeshingOptions::check() const {
   if (!(angle >= 0 && angle <= 30)) throw InvalidArgument("the angle bound alpha must be in [0, 30] degrees (termination is guaranteed up to 30)");
-  if (!(size > 0 && size <= 10)) throw InvalidArgument("the size bound l must be in (0, 10] half diagonals, got " + std::to_string(size));
-  if (!(distance > 0 && distance <= 10)) throw InvalidArgument("the distance bound d must be in (0, 10] half diagonals, got " + std::to_string(distance));
+  if (!(size > 0 && size <= 10)) throw InvalidArgument("the size bound l must be in (0, 10] half diagonals, got " + format_number(size));
+  if (!(distance > 0 && distance <= 10)) throw InvalidArgument("the distance bound d must be in (0, 10] half diagonals, got " + format_number(distance));
   if (size < 1e-4 || distance < 1e-5)
     throw InvalidArgument("the size and distance bounds are too small (l >= 1e-4, d >= 1e-5 half diagonals): the mesh would have billions of facets");
   if (initial_points < 3) throw InvalidArgument("at least 3 initial points are needed");
@@ -181,7 +181,7 @@ SoupMeshingResult mesh_soup(const TriangleSoup& soup, const SoupMeshingOptions& 
     if (++result.steps % 2000 == 0) {
       report_progress(progress, "meshing the soup", std::min(0.99, tr.number_of_vertices() / expected));
       if (tr.number_of_vertices() > options.max_vertices)
-        throw NumericalFailure("soup meshing passed " + std::to_string(options.max_vertices) +
+        throw NumericalFailure("soup meshing passed " + format_number(options.max_vertices) +
                                " vertices; raise the size and distance bounds (l, d)");
     }
   }

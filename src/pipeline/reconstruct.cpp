@@ -5,21 +5,27 @@
 
 #include <cmath>
 
+#include "core/recentering.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/implicit.h"
 
 namespace sharpmesh {
+namespace {
+
+ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress);
+
+}  // namespace
 
 void ReconstructOptions::check(std::size_t n) const {
   if (!(delta > 0) || !std::isfinite(delta))
-    throw InvalidArgument("delta must be positive (got " + std::to_string(delta) + ")");
+    throw InvalidArgument("delta must be positive (got " + format_number(delta) + ")");
   if (!(ball_radius > 0 && ball_radius <= 2))
-    throw InvalidArgument("ball radius is a fraction of d' in (0, 2] (got " + std::to_string(ball_radius) + ")");
+    throw InvalidArgument("ball radius is a fraction of d' in (0, 2] (got " + format_number(ball_radius) + ")");
   if (feature_mode == FeatureMode::Extract) features.check();
   if (!(trim_distance >= 0) || !std::isfinite(trim_distance))
-    throw InvalidArgument("trim distance must be >= 0 (got " + std::to_string(trim_distance) + ")");
+    throw InvalidArgument("trim distance must be >= 0 (got " + format_number(trim_distance) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
-    throw InvalidArgument("spacing k = " + std::to_string(spacing_k) + " needs more than k points, the set has " + std::to_string(n));
+    throw InvalidArgument("spacing k = " + format_number(spacing_k) + " needs more than k points, the set has " + format_number(n));
 }
 
 double estimated_area_from_spacing(std::size_t n, double average_spacing) {
@@ -32,6 +38,28 @@ double estimated_area_from_spacing(std::size_t n, double average_spacing) {
 ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
   check_point_set(input, 10, "reconstruction");
   options.check(input.size());
+  const detail::Recentering frame(input.points);
+  PointSet local = input;
+  frame.to_local(local.points);
+  const std::size_t duplicates = remove_duplicate_points(local);
+  check_point_set(local, 10, "reconstruction (after removing duplicated points)");
+  options.check(local.size());
+  ReconstructOptions local_options = options;
+  frame.to_local(local_options.given_features);
+  ReconstructResult result = reconstruct_centred(local, local_options, progress);
+  result.input_points = input.size();
+  result.duplicate_points = duplicates;
+  frame.to_world(result.mesh.vertices);
+  frame.to_world(result.features.graph.polylines);
+  for (Junction& j : result.features.graph.junctions) frame.to_world(j.position);
+  frame.to_world(result.meshing.feature_edges);
+  for (UncoveredGap& gap : result.meshing.uncovered) frame.to_world(gap.center);
+  return result;
+}
+
+namespace {
+
+ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
   ReconstructResult result;
   result.input_points = input.size();
 
@@ -45,8 +73,8 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
   const double estimate = estimate_facet_count(estimated_area_from_spacing(input.size(), result.average_spacing), result.criteria);
   result.estimated_facets = estimate;
   if (options.max_facets > 0 && estimate > static_cast<double>(options.max_facets))
-    throw InvalidArgument("delta = " + std::to_string(options.delta) + " would give about " + std::to_string(static_cast<long long>(estimate)) +
-                          " facets, above the limit of " + std::to_string(options.max_facets) + " (raise delta or --max-facets)");
+    throw InvalidArgument("delta = " + format_number(options.delta) + " would give about " + format_number(estimate) +
+                          " facets, above the limit of " + format_number(options.max_facets) + " (raise delta or --max-facets)");
 
   if (options.feature_mode == FeatureMode::Extract) {
     result.features = extract_features(input, options.features, progress);
@@ -111,4 +139,5 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
   return result;
 }
 
+}  // namespace
 }  // namespace sharpmesh

@@ -20,10 +20,10 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
                                         const StereoReconstructionOptions& options, const Progress& progress) {
   options.check();
   model.validate("the stereo model");
-  if (model.cameras.size() < 2) throw InvalidInput("stereo reconstruction needs at least 2 cameras, the model has " + std::to_string(model.cameras.size()));
+  if (model.cameras.size() < 2) throw InvalidInput("stereo reconstruction needs at least 2 cameras, the model has " + format_number(model.cameras.size()));
   if (images.size() != model.cameras.size())
-    throw InvalidArgument("one image per camera is needed (" + std::to_string(model.cameras.size()) + " cameras, " +
-                          std::to_string(images.size()) + " images)");
+    throw InvalidArgument("one image per camera is needed (" + format_number(model.cameras.size()) + " cameras, " +
+                          format_number(images.size()) + " images)");
   for (std::size_t v = 0; v < images.size(); ++v)
     if (images[v].width != model.cameras[v].width || images[v].height != model.cameras[v].height)
       throw InvalidInput("image " + model.cameras[v].image_name + " does not have its camera's size");

@@ -11,12 +11,12 @@ namespace sharpmesh {
 
 void check_point_set(const PointSet& points, std::size_t min_points, const char* what) {
   if (points.size() < min_points)
-    throw InvalidInput(std::string(what) + " needs at least " + std::to_string(min_points) + " points, the set has " +
-                       std::to_string(points.size()));
+    throw InvalidInput(std::string(what) + " needs at least " + format_number(min_points) + " points, the set has " +
+                       format_number(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3& p = points.points[i];
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      throw InvalidInput("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)");
+      throw InvalidInput("point " + format_number(i) + " has a non-finite coordinate (NaN or infinity)");
   }
   const double diagonal = bounding_box(points.points).diagonal();
   if (!(diagonal > 0) || !std::isfinite(diagonal))
@@ -24,7 +24,7 @@ void check_point_set(const PointSet& points, std::size_t min_points, const char*
 }
 
 double average_spacing(const PointSet& points, int k, const Progress& progress) {
-  if (k < 1) throw InvalidArgument("average spacing: k must be at least 1 (got " + std::to_string(k) + ")");
+  if (k < 1) throw InvalidArgument("average spacing: k must be at least 1 (got " + format_number(k) + ")");
   check_point_set(points, static_cast<std::size_t>(k) + 1, "average spacing");
   // The thesis's avg is the mean distance to the k nearest *other* points.
   // CGAL 5.5's compute_average_spacing counts the point itself among the k

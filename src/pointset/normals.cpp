@@ -28,9 +28,9 @@ std::vector<Record> make_records(const PointSet& points) {
 
 void check_k(int k, int minimum, std::size_t n, const char* what) {
   if (k < minimum)
-    throw InvalidArgument(std::string(what) + ": k must be at least " + std::to_string(minimum) + " (got " + std::to_string(k) + ")");
+    throw InvalidArgument(std::string(what) + ": k must be at least " + format_number(minimum) + " (got " + format_number(k) + ")");
   if (static_cast<std::size_t>(k) >= n)
-    throw InvalidArgument(std::string(what) + ": k = " + std::to_string(k) + " needs more than k points, the set has " + std::to_string(n));
+    throw InvalidArgument(std::string(what) + ": k = " + format_number(k) + " needs more than k points, the set has " + format_number(n));
 }
 
 }  // namespace

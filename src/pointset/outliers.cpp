@@ -15,10 +15,10 @@ namespace sharpmesh {
 namespace {
 
 void check_k(int k, std::size_t n, const char* what) {
-  if (k < 1) throw InvalidArgument(std::string(what) + ": k must be at least 1 (got " + std::to_string(k) + ")");
+  if (k < 1) throw InvalidArgument(std::string(what) + ": k must be at least 1 (got " + format_number(k) + ")");
   if (static_cast<std::size_t>(k) >= n)
-    throw InvalidArgument(std::string(what) + ": k = " + std::to_string(k) + " needs more than k points, the set has " +
-                          std::to_string(n));
+    throw InvalidArgument(std::string(what) + ": k = " + format_number(k) + " needs more than k points, the set has " +
+                          format_number(n));
 }
 
 }  // namespace
@@ -26,14 +26,14 @@ void check_k(int k, std::size_t n, const char* what) {
 void PercentageOutlierOptions::check(std::size_t n) const {
   check_k(k, n, "outlier removal");
   if (!(percentage >= 0 && percentage <= 100))
-    throw InvalidArgument("outlier removal: percentage must be in [0, 100] (got " + std::to_string(percentage) + ")");
+    throw InvalidArgument("outlier removal: percentage must be in [0, 100] (got " + format_number(percentage) + ")");
 }
 
 void SigmaOutlierOptions::check(std::size_t n) const {
   check_k(k, n, "3-sigma outlier removal");
   if (!(sigmas > 0) || !std::isfinite(sigmas))
     throw InvalidArgument("3-sigma outlier removal: the number of standard deviations must be positive (got " +
-                          std::to_string(sigmas) + ")");
+                          format_number(sigmas) + ")");
 }
 
 std::size_t remove_outliers_percentage(PointSet& points, const PercentageOutlierOptions& options, const Progress& progress) {

@@ -1,6 +1,7 @@
 // Point-set simplification (App. A.5): grid clustering and random removal.
 #include <CGAL/grid_simplify_point_set.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -13,10 +14,10 @@ namespace sharpmesh {
 std::size_t grid_simplify(PointSet& points, double cell_size) {
   check_point_set(points, 1, "grid simplification");
   if (!(cell_size > 0) || !std::isfinite(cell_size))
-    throw InvalidArgument("grid simplification: cell size must be positive (got " + std::to_string(cell_size) + ")");
+    throw InvalidArgument("grid simplification: cell size must be positive (got " + format_number(cell_size) + ")");
   const double diagonal = bounding_box(points.points).diagonal();
   if (diagonal / cell_size > 1e7)
-    throw InvalidArgument("grid simplification: cell size " + std::to_string(cell_size) + " is below 1e-7 of the diagonal");
+    throw InvalidArgument("grid simplification: cell size " + format_number(cell_size) + " is below 1e-7 of the diagonal");
   const std::vector<detail::Point3> cgal_points = detail::to_cgal(points.points);
   std::vector<std::uint32_t> order(points.size());
   std::iota(order.begin(), order.end(), 0u);
@@ -29,12 +30,25 @@ std::size_t grid_simplify(PointSet& points, double cell_size) {
   return removed;
 }
 
+std::size_t remove_duplicate_points(PointSet& points) {
+  std::vector<std::uint32_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0u);
+  // Stable: among equal positions the first in file order comes first and stays.
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return points.points[a] < points.points[b]; });
+  std::vector<bool> keep(points.size(), true);
+  std::size_t removed = 0;
+  for (std::size_t i = 1; i < order.size(); ++i)
+    if (points.points[order[i]] == points.points[order[i - 1]]) keep[order[i]] = false, ++removed;
+  if (removed > 0) points.keep_if(keep);
+  return removed;
+}
+
 // CGAL's random_simplify_point_set draws from std::rand, which cannot be seeded
 // per call; this keeps the same semantics with a seeded generator so that
 // results are reproducible.
 std::size_t random_simplify(PointSet& points, double percentage, std::uint64_t seed) {
   if (!(percentage >= 0 && percentage <= 100))
-    throw InvalidArgument("random simplification: percentage must be in [0, 100] (got " + std::to_string(percentage) + ")");
+    throw InvalidArgument("random simplification: percentage must be in [0, 100] (got " + format_number(percentage) + ")");
   const std::size_t n = points.size();
   const std::size_t remove = static_cast<std::size_t>(std::floor(n * percentage / 100.0));
   std::vector<std::uint32_t> order(n);

@@ -8,9 +8,9 @@
 namespace sharpmesh {
 
 void JetSmoothingOptions::check(std::size_t n) const {
-  if (k < 6) throw InvalidArgument("jet smoothing: k must be at least 6 to fit a quadric (got " + std::to_string(k) + ")");
+  if (k < 6) throw InvalidArgument("jet smoothing: k must be at least 6 to fit a quadric (got " + format_number(k) + ")");
   if (static_cast<std::size_t>(k) >= n)
-    throw InvalidArgument("jet smoothing: k = " + std::to_string(k) + " needs more than k points, the set has " + std::to_string(n));
+    throw InvalidArgument("jet smoothing: k = " + format_number(k) + " needs more than k points, the set has " + format_number(n));
 }
 
 void jet_smooth(PointSet& points, const JetSmoothingOptions& options, const Progress& progress) {

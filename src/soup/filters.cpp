@@ -17,7 +17,7 @@
 namespace sharpmesh {
 
 void SoupFilterOptions::check() const {
-  if (max_crossings < 0) throw InvalidArgument("the visibility threshold t3 must be >= 0, got " + std::to_string(max_crossings));
+  if (max_crossings < 0) throw InvalidArgument("the visibility threshold t3 must be >= 0, got " + format_number(max_crossings));
   if (!(sight_margin >= 0 && sight_margin <= 100)) throw InvalidArgument("the line-of-sight margin must be in [0, 100] average spacings");
   if (!(grazing_angle > 0 && grazing_angle <= 90)) throw InvalidArgument("the grazing angle must be in (0, 90] degrees");
   if (!(big_radius > 0)) throw InvalidArgument("the big-triangle radius must be positive");

@@ -121,8 +121,8 @@ void StereoModel::validate(const std::string& where) const {
     seen.clear();
     for (std::uint32_t v : t.views) {
       if (v >= cameras.size())
-        throw InvalidInput(at + ": refers to view " + std::to_string(v) + " but there are " + std::to_string(cameras.size()) + " cameras");
-      if (!seen.insert(v).second) throw InvalidInput(at + ": lists view " + std::to_string(v) + " twice");
+        throw InvalidInput(at + ": refers to view " + format_number(v) + " but there are " + format_number(cameras.size()) + " cameras");
+      if (!seen.insert(v).second) throw InvalidInput(at + ": lists view " + format_number(v) + " twice");
     }
   }
 }

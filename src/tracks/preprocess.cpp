@@ -11,12 +11,12 @@ namespace sharpmesh {
 
 void TrackPreprocessOptions::check() const {
   if (!(merge_distance >= 0 && merge_distance < 1))
-    throw InvalidArgument("the merge distance t1 must be in [0, 1) (fraction of the half diagonal), got " + std::to_string(merge_distance));
-  if (outlier_k < 1) throw InvalidArgument("the outlier filter's k must be >= 1, got " + std::to_string(outlier_k));
+    throw InvalidArgument("the merge distance t1 must be in [0, 1) (fraction of the half diagonal), got " + format_number(merge_distance));
+  if (outlier_k < 1) throw InvalidArgument("the outlier filter's k must be >= 1, got " + format_number(outlier_k));
   if (!(outlier_sigmas > 0)) throw InvalidArgument("the outlier filter's sigma multiple must be positive");
   if (!(min_cone_angle >= 0 && min_cone_angle < M_PI))
-    throw InvalidArgument("the minimum cone angle t2 must be in [0, pi) radians, got " + std::to_string(min_cone_angle));
-  if (smooth_k != 0 && smooth_k < 6) throw InvalidArgument("the smoothing k must be 0 (off) or >= 6, got " + std::to_string(smooth_k));
+    throw InvalidArgument("the minimum cone angle t2 must be in [0, pi) radians, got " + format_number(min_cone_angle));
+  if (smooth_k != 0 && smooth_k < 6) throw InvalidArgument("the smoothing k must be 0 (off) or >= 6, got " + format_number(smooth_k));
 }
 
 double cone_angle(const Vec3& apex, const std::vector<Vec3>& centers) {

@@ -61,7 +61,7 @@ Vec3 smoothed(const std::vector<Vec3>& points, std::size_t i, const std::vector<
 }  // namespace
 
 void jet_smooth_gaussian(std::vector<Vec3>& points, int k, const Progress& progress) {
-  if (k < 6) throw InvalidArgument("jet smoothing needs k >= 6 neighbours (a quadric has 6 coefficients), got " + std::to_string(k));
+  if (k < 6) throw InvalidArgument("jet smoothing needs k >= 6 neighbours (a quadric has 6 coefficients), got " + format_number(k));
   if (points.size() < static_cast<std::size_t>(k) + 1) return;  // too few points to fit anything
   const detail::KnnIndex index(points);
   std::vector<Vec3> out(points.size());

@@ -2,13 +2,7 @@
 # Command-line tests: cli_test.sh CASE SHARPMESH_BINARY DATA_DIR
 # Failure cases check: exit code 1 or 2, a one-line message naming the
 # problem, and no output file left behind (not even a temporary).
-set -uo pipefail
-case_name=$1 bin=$2 data=$3
-work=$(mktemp -d)
-trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
-cd "$work"
-
-fail() { echo "FAIL [$case_name]: $*" >&2; exit 1; }
+source "$(dirname "$0")/setup.sh"
 
 # expect_error CODE PATTERN OUTPUT -- command...
 expect_error() {

@@ -1,0 +1,190 @@
+#!/usr/bin/env bash
+# Adversarial inputs (issue 7): adversarial.sh CASE SHARPMESH_BINARY DATA_DIR
+# Each case feeds one hostile input to every command that reads that kind of
+# data. The contract, whatever the input: either a valid result (exit 0, the
+# output written) or a one-line message with exit code 1 or 2 and no output
+# left behind; never a crash, a hang (ctest's timeout) or a temporary file.
+source "$(dirname "$0")/setup.sh"
+
+# contract OUTPUT -- command...: the contract above; prints what happened.
+contract() {
+  local output=$1; shift
+  rm -f "$output"
+  "$@" >stdout.txt 2>stderr.txt
+  local rc=$?
+  ls -a | grep -q '\.tmp\.' && fail "$*: a temporary file was left behind"
+  if [[ $rc -eq 0 ]]; then
+    [[ -z "$output" || -e "$output" ]] || fail "$*: exit 0 but no output $output"
+    echo "  ok     $*"
+    return 0
+  fi
+  [[ $rc -eq 1 || $rc -eq 2 ]] || { cat stderr.txt >&2; fail "$*: exit code $rc (crash or signal?)"; }
+  [[ $(grep -c '^sharpmesh: ' stderr.txt) -eq 1 ]] || { cat stderr.txt >&2; fail "$*: expected a one-line message"; }
+  tail -n 1 stderr.txt | grep -q '^sharpmesh: ' || { cat stderr.txt >&2; fail "$*: the message is not the last line"; }
+  [[ -z "$output" || ! -e "$output" ]] || fail "$*: output $output left behind after an error"
+  echo "  error  $* -> $(tail -n 1 stderr.txt)"
+}
+
+# Every command that reads a point cloud, with the toolbox's options switched on.
+point_commands() {
+  local cloud=$1
+  contract "" $bin info "$cloud" -q
+  contract out.ply $bin clean "$cloud" -o out.ply --outliers 5 --outliers-sigma 3 --smooth 24 --normals jet --orient -q
+  contract out.ply $bin clean "$cloud" -o out.ply --grid 2 --random 10 --seed 1 -q
+  contract out.txt $bin features "$cloud" -o out.txt --edge-points e.ply -q
+  rm -f e.ply
+  contract out.ply $bin reconstruct "$cloud" -o out.ply --no-features -q
+  contract out.ply $bin reconstruct "$cloud" -o out.ply -q
+}
+
+# Every command that reads a mesh.
+mesh_commands() {
+  local mesh=$1
+  contract out.ply $bin sample "$mesh" -n 2000 -o out.ply --sharp-edges out.txt -q
+  rm -f out.txt
+  contract "" $bin eval "$mesh" --reference "$mesh" --samples 2000 -q
+  contract "" $bin eval "$data/meshes/cube.off" --reference "$mesh" --samples 2000 -q
+  printf '2 0 0 0 1 1 1\n' > one.polylines.txt
+  contract "" $bin eval-features one.polylines.txt --reference "$mesh" -q
+}
+
+points() {  # points KIND FILE
+  python3 - "$1" "$2" <<'PY'
+import math, random, sys
+kind, path = sys.argv[1], sys.argv[2]
+random.seed(1)
+def sphere(n, scale=1.0, offset=(0.0, 0.0, 0.0)):
+    out = []
+    for i in range(n):
+        z = 1 - 2 * (i + 0.5) / n; r = math.sqrt(1 - z * z); a = i * 2.399963
+        out.append((offset[0] + scale * r * math.cos(a), offset[1] + scale * r * math.sin(a), offset[2] + scale * z))
+    return out
+rows = {
+    "duplicated": lambda: [(0.5, 0.25, 1.0)] * 2000,
+    "each-twice": lambda: sphere(1500) + sphere(1500),
+    "coplanar": lambda: [(random.random(), random.random(), 0.0) for _ in range(2000)],
+    "tilted-plane": lambda: [(x, y, 0.3 * x - 0.7 * y) for x, y in ((random.random(), random.random()) for _ in range(2000))],
+    "collinear": lambda: [(t / 1999, 2 * t / 1999, 3 * t / 1999) for t in range(2000)],
+    "four-points": lambda: [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)],
+    "huge-coordinates": lambda: sphere(2000, 1e30),
+    "tiny-coordinates": lambda: sphere(2000, 1e-30),
+    "far-from-origin": lambda: sphere(2000, 1.0, (1e12, -1e12, 1e12)),
+}[kind]()
+with open(path, "w") as f:
+    for p in rows: f.write("%r %r %r\n" % p)
+PY
+}
+
+case "$case_name" in
+  duplicated|each-twice|coplanar|tilted-plane|collinear|four-points|huge-coordinates|tiny-coordinates|far-from-origin)
+    points "$case_name" c.xyz
+    point_commands c.xyz ;;
+  far-from-origin-accuracy)  # recentring: a sphere 1e12 away comes out as well as at the origin
+    points far-from-origin c.xyz
+    $bin reconstruct c.xyz -o m.ply --no-features -q || fail "reconstruct failed far from the origin"
+    $bin info m.ply -q >/dev/null || fail "unreadable output"
+    python3 - <<'PY' || fail "the far sphere is distorted"
+import struct
+data = open("m.ply", "rb").read()
+header, body = data.split(b"end_header\n", 1)
+n = int([l for l in header.split(b"\n") if l.startswith(b"element vertex")][0].split()[2])
+props = [l for l in header.split(b"\n") if l.startswith(b"property") and b"list" not in l]
+size = 8 if b"double" in props[0] else 4
+fmt = "<" + ("d" if size == 8 else "f") * 3
+step = size * len(props)
+err = max(abs(sum((c - o) ** 2 for c, o in zip(struct.unpack_from(fmt, body, i * step), (1e12, -1e12, 1e12))) ** 0.5 - 1) for i in range(n))
+assert err < 0.05, err
+PY
+    ;;
+  nan-inf-rows)
+    points far-from-origin c.xyz
+    sed -i '500s/.*/inf 0 0/; 900s/.*/0 -inf nan/' c.xyz
+    point_commands c.xyz
+    grep -q "line 500" stderr.txt || fail "the message does not name the first bad line" ;;
+  huge-headers)  # headers declaring 10^12 elements on tiny files: refused before any allocation
+    printf 'ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 1 1\n' > a.ply
+    printf 'ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty double x\nproperty double y\nproperty double z\nelement face 1000000000000\nproperty list uchar int vertex_indices\nend_header\n0123' > b.ply
+    printf 'OFF\n1000000000000 1000000000000 0\n0 0 0\n' > c.off
+    printf 'solid\n' > d.stl; head -c 80 /dev/zero > e.stl; printf '\xff\xff\xff\x7f' >> e.stl
+    printf '1000000000000 0 0 0\n' > f.polylines.txt
+    for f in a.ply b.ply c.off; do ( ulimit -v 4000000; point_commands $f ) || exit 1; done
+    for f in b.ply c.off d.stl e.stl; do ( ulimit -v 4000000; mesh_commands $f ) || exit 1; done
+    ( ulimit -v 4000000; contract "" $bin eval-features f.polylines.txt --reference "$data/meshes/cube.off" -q ) || exit 1 ;;
+  degenerate-meshes)
+    printf 'OFF\n3 1 0\n0 0 0\n1 1 1\n2 2 2\n3 0 1 2\n' > flat.off            # one zero-area facet
+    printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n' > index.off          # index out of range
+    printf 'OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n' > nan.off          # NaN vertex
+    printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 0 3\n' > repeated.off  # a facet repeating a vertex
+    printf 'v 0 0 0\nv 1 0 0\nf 1 2 3\n' > short.obj
+    for f in flat.off index.off nan.off repeated.off short.obj; do mesh_commands $f; done ;;
+  absurd-parameters)  # k >= n, zero and negative radii and sizes
+    points each-twice c.xyz
+    contract out.ply $bin clean c.xyz -o out.ply --smooth 5000
+    contract out.ply $bin clean c.xyz -o out.ply --outliers-sigma 3 --sigma-k 100000
+    contract out.ply $bin clean c.xyz -o out.ply --normals pca --normal-k 0
+    contract out.ply $bin clean c.xyz -o out.ply --grid 0
+    contract out.ply $bin clean c.xyz -o out.ply --grid -1
+    contract out.ply $bin clean c.xyz -o out.ply --grid 1e-300
+    for option in "--offset-radius 0" "--offset-radius -1" "--convolution-radius -0.5" "--t1 0" "--t2 -1" "--cluster-k 0" \
+                  "--cluster-k 100000" "--cluster-angle -5" "--successor-k 0" "--junction-factor -1" "--denoise-k 100000"; do
+      contract out.txt $bin features c.xyz -o out.txt $option
+    done
+    for option in "--delta 0" "--delta -1" "--delta 1e-9" "--delta 1e300" "--ball-radius 0" "--ball-radius -1" "--max-facets 10"; do
+      contract out.ply $bin reconstruct c.xyz -o out.ply --no-features $option
+    done
+    contract out.ply $bin sample "$data/meshes/cube.off" -o out.ply -n 0
+    contract "" $bin eval "$data/meshes/cube.off" --reference "$data/meshes/cube.off" --sharp-angle -5
+    contract "" $bin eval-features /dev/null --reference "$data/meshes/cube.off" --tolerance -1 ;;
+  interrupt)  # Ctrl-C during a long run: exit 130, nothing written
+    $bin sample "$data/meshes/fandisk.off" -n 100000 --seed 1 -o s.ply -q || fail "sample failed"
+    $bin reconstruct s.ply -o m.ply --delta 2 >/dev/null 2>stderr.txt &
+    pid=$!
+    sleep 3
+    kill -INT $pid
+    wait $pid
+    rc=$?
+    [[ $rc -eq 130 ]] || fail "exit code $rc after SIGINT, expected 130"
+    [[ ! -e m.ply ]] || fail "output written despite the interruption"
+    ls -a | grep -q '\.tmp\.' && fail "a temporary file was left behind"
+    tail -n 1 stderr.txt | grep -q "interrupted" || fail "no message after SIGINT" ;;
+  deterministic)  # same input, parameters and seed: byte-identical outputs, 1 thread or all
+    $bin sample "$data/meshes/fandisk.off" -n 20000 --seed 4 -o s.ply -q || fail "sample failed"
+    for threads in 1 0; do
+      $bin clean s.ply -o c$threads.ply --outliers-sigma 3 --smooth 18 --normals jet --orient --threads $threads -q || fail "clean failed"
+      $bin features s.ply -o f$threads.txt --edge-points e$threads.ply --threads $threads -q || fail "features failed"
+      $bin reconstruct s.ply -o m$threads.ply --threads $threads -q || fail "reconstruct failed"
+      $bin sample m$threads.ply -n 5000 --seed 2 -o r$threads.ply --threads $threads -q || fail "sample failed"
+    done
+    for f in c f e m r; do
+      ext=$([[ $f == f ]] && echo txt || echo ply)
+      cmp -s ${f}1.$ext ${f}0.$ext || fail "${f}1.$ext and ${f}0.$ext differ: not deterministic across thread counts"
+    done ;;
+  deterministic-stereo)  # known gap: with several threads the soup mesher's output varies (see README); one thread is reproducible
+    $bin make-scene sc --views 4 --width 200 --height 150 --samples 4000 --seed 5 -q || fail "make-scene failed"
+    for run in a b; do
+      $bin stereo sc -o m$run.ply --soup s$run.ply --tracks-out t$run.ply --threads 1 -q || fail "stereo failed"
+    done
+    cmp -s ta.ply tb.ply || fail "tracks differ between two runs"
+    cmp -s sa.ply sb.ply || fail "soups differ between two runs"
+    cmp -s ma.ply mb.ply || fail "meshes differ between two runs"
+    $bin stereo sc -o mc.ply --tracks-out tc.ply --threads 0 -q || fail "stereo failed"
+    cmp -s ta.ply tc.ply || fail "tracks differ between 1 thread and all" ;;
+  stereo-inputs)  # broken camera models and tracks in every stereo reader
+    $bin make-scene sc --views 3 --width 64 --height 48 --samples 500 -q || fail "make-scene failed"
+    cp -r sc/sparse sparse-ok
+    head -c 300 sparse-ok/images.txt > sc/sparse/images.txt
+    contract m.ply $bin stereo sc -o m.ply
+    contract "" $bin eval-stereo sc/ground_truth.ply --reference sc/ground_truth.ply --cameras sc/sparse
+    cp sparse-ok/images.txt sc/sparse/images.txt
+    sed -i 's/^\([0-9]* [-0-9.e]* [-0-9.e]*\) [-0-9.e]*/\1 nan/' sc/sparse/points3D.txt
+    contract m.ply $bin stereo sc -o m.ply
+    cp sparse-ok/points3D.txt sc/sparse/points3D.txt
+    printf 'NVM_V3\n\n1000000000000\n' > big.nvm
+    contract m.ply $bin stereo big.nvm -o m.ply
+    printf '# Bundle file v0.3\n1000000000 1000000000\n' > bundle.out; printf 'a.png\n' > list.txt
+    contract m.ply $bin stereo bundle.out -o m.ply
+    printf 'ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty double x\nproperty double y\nproperty double z\nproperty list uchar uint views\nend_header\n' > t.ply
+    contract m.ply $bin stereo sc -o m.ply --tracks t.ply ;;
+  *) fail "unknown case" ;;
+esac
+echo "PASS [$case_name]"
