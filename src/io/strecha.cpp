@@ -3,6 +3,7 @@
 //   C (camera centre), "width height".
 // Projection: m = K R^T (M - C). K's pixel origin is the centre of the
 // top-left pixel, so 0.5 is added to the principal point.
+#include <cmath>
 #include <algorithm>
 #include <filesystem>
 
@@ -24,7 +25,11 @@ Camera read_strecha_camera(const std::string& path, const std::string& image_nam
   for (auto& row : r)
     for (double& v : row) v = in.number("R");
   for (double& v : c) v = in.number("the camera centre");
-  for (double& v : size) v = in.number("width and height");
+  for (double& v : size) {
+    v = in.number("width and height");
+    if (!(v >= 1 && v <= (1 << 20)) || v != std::floor(v))
+      throw InvalidInput(path + ": image size " + format_number(v) + " is not a pixel count in [1, 2^20]");
+  }
   if (distortion[0] != 0 || distortion[1] != 0 || distortion[2] != 0)
     throw InvalidInput(path + ": non-zero distortion; undistort the images first");
   if (k[1][0] != 0 || k[2][0] != 0 || k[2][1] != 0 || k[2][2] != 1) throw InvalidInput(path + ": K is not upper triangular with K[2][2] = 1");
