@@ -149,6 +149,45 @@ Workspace::~Workspace() {
   fs::remove_all(dir_, ignored);
 }
 
+/// The readers of one entry point; `write(name, part)` stores a part of the input.
+template <class Write>
+void read_single(const std::string& reader, const std::vector<std::string>& parts, const Workspace& workspace, Write&& write) {
+  if (reader == "xyz") {
+    read_point_set(write("in.xyz", 0));
+  } else if (reader == "obj") {
+    read_mesh(write("in.obj", 0));
+  } else if (reader == "stl") {
+    read_mesh(write("in.stl", 0));
+  } else if (reader == "las") {
+    read_point_set(write("in.las", 0));
+  } else if (reader == "polylines") {
+    read_polylines(write("in.polylines.txt", 0));
+  } else if (reader == "tracks_ply") {
+    std::vector<bool> outliers;
+    read_tracks_ply(write("tracks.ply", 0), &outliers);
+  } else if (reader == "colmap_text" || reader == "colmap_binary") {
+    const std::string ext = reader == "colmap_text" ? ".txt" : ".bin";
+    write("cameras" + ext, 0), write("images" + ext, 1), write("points3D" + ext, 2);
+    read_colmap_model(workspace.dir());
+  } else if (reader == "colmap_vis") {
+    const std::string ply = write("fused.ply", 0);
+    write("fused.ply.vis", 1);
+    std::vector<Vec3> normals;
+    read_colmap_fused(ply, vis_cameras(), &normals);
+  } else if (reader == "strecha") {
+    // Every part but the last is a camera file; the last is the tracks PLY.
+    fs::create_directory(workspace.path("cameras"));
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) write("cameras/" + std::to_string(i) + ".png.camera", i);
+    read_strecha(workspace.path("cameras"), write("tracks.ply", parts.size() - 1));
+  } else if (reader == "bundler") {
+    read_bundler(write("bundle.out", 0), write("list.txt", 1));
+  } else if (reader == "nvm") {
+    read_nvm(write("model.nvm", 0));
+  } else {
+    throw std::invalid_argument("fuzz harness: unknown reader '" + reader + "'");
+  }
+}
+
 bool run_reader(const std::string& reader, const std::string& data, const Workspace& workspace) {
   clear(workspace);
   const std::vector<std::string> parts = split_files(data);
@@ -172,47 +211,10 @@ bool run_reader(const std::string& reader, const std::string& data, const Worksp
     const std::string file = write("in." + reader, 0);
     attempt([&] { read_point_set(file); });
     attempt([&] { read_mesh(file); });
-    return accepted;
+  } else {
+    attempt([&] { read_single(reader, parts, workspace, write); });
   }
-  try {
-    if (reader == "xyz") {
-      read_point_set(write("in.xyz", 0));
-    } else if (reader == "obj") {
-      read_mesh(write("in.obj", 0));
-    } else if (reader == "stl") {
-      read_mesh(write("in.stl", 0));
-    } else if (reader == "las") {
-      read_point_set(write("in.las", 0));
-    } else if (reader == "polylines") {
-      read_polylines(write("in.polylines.txt", 0));
-    } else if (reader == "tracks_ply") {
-      std::vector<bool> outliers;
-      read_tracks_ply(write("tracks.ply", 0), &outliers);
-    } else if (reader == "colmap_text" || reader == "colmap_binary") {
-      const std::string ext = reader == "colmap_text" ? ".txt" : ".bin";
-      write("cameras" + ext, 0), write("images" + ext, 1), write("points3D" + ext, 2);
-      read_colmap_model(workspace.dir());
-    } else if (reader == "colmap_vis") {
-      const std::string ply = write("fused.ply", 0);
-      write("fused.ply.vis", 1);
-      std::vector<Vec3> normals;
-      read_colmap_fused(ply, vis_cameras(), &normals);
-    } else if (reader == "strecha") {
-      // Every part but the last is a camera file; the last is the tracks PLY.
-      fs::create_directory(workspace.path("cameras"));
-      for (std::size_t i = 0; i + 1 < parts.size(); ++i) write("cameras/" + std::to_string(i) + ".png.camera", i);
-      read_strecha(workspace.path("cameras"), write("tracks.ply", parts.size() - 1));
-    } else if (reader == "bundler") {
-      read_bundler(write("bundle.out", 0), write("list.txt", 1));
-    } else if (reader == "nvm") {
-      read_nvm(write("model.nvm", 0));
-    } else {
-      throw std::invalid_argument("fuzz harness: unknown reader '" + reader + "'");
-    }
-  } catch (const Error&) {
-    return false;  // a clear refusal is a correct answer to a malformed file
-  }
-  return true;
+  return accepted;
 }
 
 std::vector<std::string> seed_inputs(const std::string& reader) {
