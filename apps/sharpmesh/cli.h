@@ -42,6 +42,8 @@ Command add_eval_features(CLI::App& app);
 Command add_make_scene(CLI::App& app);
 Command add_eval_stereo(CLI::App& app);
 Command add_stereo(CLI::App& app);
+Command add_view(CLI::App& app);
+Command add_render(CLI::App& app);
 
 /// The feature-detection flags of `features`, shared with `reconstruct`.
 void add_feature_options(CLI::App& sub, FeatureOptions& options);

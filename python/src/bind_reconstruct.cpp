@@ -1,0 +1,106 @@
+// The Chapter 7 pipeline (sharpmesh/reconstruct.h) with the options of
+// `sharpmesh reconstruct`.
+#include "convert.h"
+#include "sharpmesh/errors.h"
+#include "sharpmesh/reconstruct.h"
+
+namespace sharpmesh::python {
+namespace {
+
+py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions& o) {
+  py::dict counts, derived, protection, report;
+  counts["input_points"] = r.input_points;
+  counts["duplicate_points"] = r.duplicate_points;
+  counts["points_used"] = r.used_points;
+  counts["normals_estimated"] = r.normals_estimated;
+  counts["normal_source"] = r.normal_source;
+  counts["vertices"] = r.mesh.vertices.size();
+  counts["facets"] = r.mesh.faces.size();
+  counts["trimmed_facets"] = r.trimmed_facets;
+  counts["boundary_edges"] = r.boundary_edges;
+  derived["average_spacing"] = r.average_spacing;
+  derived["d_prime"] = r.d_prime;
+  derived["facet_angle_deg"] = r.criteria.angle;
+  derived["max_edge_length"] = r.criteria.edge_length;
+  derived["max_surface_distance"] = r.criteria.distance;
+  derived["estimated_facets"] = r.estimated_facets;
+  report["counts"] = counts;
+  report["derived"] = derived;
+  if (o.feature_mode != FeatureMode::None) {
+    const ImplicitMeshingResult& m = r.meshing;
+    protection["polylines"] = o.feature_mode == FeatureMode::Given ? o.given_features.size() : r.features.graph.polylines.size();
+    protection["protecting_balls"] = m.protecting_balls;
+    protection["enlarged_balls"] = m.enlarged_balls;
+    protection["protected_segments"] = m.protected_segments;
+    protection["represented_segments"] = m.represented_segments;
+    protection["uncovered_gaps"] = m.uncovered.size();
+    protection["max_gap"] = m.max_gap;
+    report["protection"] = protection;
+  }
+  report["stages"] = stages_dict(r.stages);
+  return report;
+}
+
+}  // namespace
+
+void bind_reconstruct(py::module_& m) {
+  const ReconstructOptions d;
+  const FeatureOptions f;
+  m.def("reconstruct",
+        [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
+           double ball_radius, bool fixed_balls, double trim, const std::string& normals, int normal_k, int orient_k,
+           bool recompute_normals, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
+           double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k,
+           const py::object& progress) {
+          const PointSet set = to_point_set(points, point_normals);
+          ReconstructOptions o;
+          o.delta = delta;
+          o.feature_mode = no_features ? FeatureMode::None : features.is_none() ? FeatureMode::Extract : FeatureMode::Given;
+          if (no_features && !features.is_none()) throw InvalidArgument("give either no_features or features, not both");
+          o.given_features = to_polylines(features, "features");
+          o.ball_radius = ball_radius;
+          o.adapt_balls_to_gap = !fixed_balls;
+          o.trim_distance = trim;
+          if (normals == "auto") {
+            o.normal_source = NormalSource::Automatic;
+          } else if (normals == "cvcm") {
+            o.normal_source = NormalSource::Cvcm;
+          } else if (normals == "jet" || normals == "pca") {
+            o.normal_source = NormalSource::Estimated;
+            o.normals.method = normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet;
+          } else {
+            throw InvalidArgument("normals must be 'auto', 'cvcm', 'jet' or 'pca'");
+          }
+          if (o.normal_source == NormalSource::Cvcm && o.feature_mode != FeatureMode::Extract)
+            throw InvalidArgument("normals='cvcm' needs feature extraction (drop no_features / features)");
+          o.normals.k = normal_k;
+          o.orientation.k = orient_k;
+          o.recompute_normals = recompute_normals;
+          o.max_facets = max_facets;
+          o.seed = seed;
+          o.features = feature_options(offset_radius, convolution_radius, t1, t2, cluster_k, cluster_angle, successor_k,
+                                       junction_factor, denoise_k);
+          ProgressBridge bridge(progress);
+          const ReconstructResult r = without_gil(bridge, [&] { return reconstruct(set, o, bridge.callback()); });
+          const py::object extracted = o.feature_mode == FeatureMode::Extract ? make_features(r.features) : py::object(py::none());
+          return py::module_::import("sharpmesh._types")
+              .attr("Reconstruction")(make_mesh(r.mesh), from_polylines(r.meshing.feature_edges), extracted, reconstruct_report(r, o));
+        },
+        py::arg("points"), py::arg("point_normals") = py::none(), py::kw_only(), py::arg("delta") = d.delta,
+        py::arg("no_features") = false, py::arg("features") = py::none(), py::arg("ball_radius") = d.ball_radius,
+        py::arg("fixed_balls") = false, py::arg("trim") = d.trim_distance, py::arg("normals") = "auto",
+        py::arg("normal_k") = d.normals.k, py::arg("orient_k") = d.orientation.k, py::arg("recompute_normals") = false,
+        py::arg("max_facets") = d.max_facets, py::arg("seed") = d.seed, py::arg("offset_radius") = f.offset_radius,
+        py::arg("convolution_radius") = f.convolution_radius, py::arg("t1") = f.t1, py::arg("t2") = f.t2,
+        py::arg("cluster_k") = f.cluster_k, py::arg("cluster_angle") = f.cluster_angle, py::arg("successor_k") = f.successor_k,
+        py::arg("junction_factor") = f.junction_factor, py::arg("denoise_k") = f.denoise_k, py::arg("progress") = py::none(),
+        R"(Point cloud -> mesh with sharp edges, as `sharpmesh reconstruct` (thesis Ch. 7) -> Reconstruction.
+
+delta: mesh size d' = delta x average spacing (7.3.2); no_features: the PIF baseline; features: protect these polylines
+instead of extracting them; ball_radius: fraction of d'; fixed_balls: do not grow balls to reach the implicit surface;
+trim: remove facets farther than trim x d' + 2 avg from the data (0: keep the closed surface); normals (when
+point_normals is None or recompute_normals): 'auto', 'cvcm', 'jet' or 'pca', over normal_k neighbours, oriented over
+orient_k; max_facets: refuse larger estimates (0: no limit); the feature options are those of extract_features().)");
+}
+
+}  // namespace sharpmesh::python

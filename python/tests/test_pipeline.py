@@ -1,0 +1,110 @@
+"""The pipeline from Python: toolbox, features, reconstruction, evaluation,
+and a round trip against the command-line tool on the same input."""
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import sharpmesh as sm
+
+
+def test_clean_uses_the_cli_names_and_defaults(cube_cloud):
+    out = sm.clean(cube_cloud.points, outliers=5, normals="jet", orient=True)
+    assert len(out.points) == len(cube_cloud.points) - round(0.05 * len(cube_cloud.points))
+    assert out.normals.shape == out.points.shape
+    np.testing.assert_allclose(np.linalg.norm(out.normals, axis=1), 1, atol=1e-6)
+    with pytest.raises(sm.InvalidArgument, match="smooth"):
+        sm.clean(cube_cloud.points, smooth=3)
+
+
+def test_features_of_a_cube_are_its_twelve_edges(cube, cube_cloud):
+    f = sm.extract_features(cube_cloud.points)
+    assert f.point_classes.shape == (len(cube_cloud.points),)
+    assert set(np.unique(f.point_classes)) <= {0, 1, 2}
+    assert 12 <= len(f.polylines) <= 14
+    assert len(f.junctions) == 8 and min(f.junction_degrees) >= 3  # the 8 corners
+    ev = sm.eval_features(f.polylines, cube)
+    assert ev["recall"] > 0.9 and ev["precision"] > 0.9
+    assert ev["recalled_corners"] == ev["truth_corners"] == 8
+
+
+def test_reconstruct_matches_the_cli_on_the_same_input(tmp_path, cli, cube_cloud):
+    cloud = tmp_path / "cube.ply"
+    sm.write_points(str(cloud), cube_cloud.points)
+    subprocess.run([cli, "reconstruct", str(cloud), "-o", str(tmp_path / "cli.ply"),
+                    "--sharp-edges", str(tmp_path / "cli.txt"), "-q"], check=True)
+    cli_mesh = sm.read_mesh(str(tmp_path / "cli.ply"))
+    cli_edges = sm.read_polylines(str(tmp_path / "cli.txt"))
+
+    result = sm.reconstruct(sm.read_points(str(cloud)).points)
+    assert result.mesh.faces.shape == cli_mesh.faces.shape
+    np.testing.assert_allclose(result.mesh.vertices, cli_mesh.vertices, atol=1e-9)
+    np.testing.assert_array_equal(result.mesh.faces, cli_mesh.faces)
+    assert len(result.sharp_edges) == len(cli_edges)
+    assert result.report["protection"]["represented_segments"] == result.report["protection"]["protected_segments"]
+    topology = sm.check_topology(result.mesh)
+    assert topology["closed"] and topology["manifold"] and not topology["self_intersecting"]
+
+
+def test_reconstruction_is_accurate_and_keeps_the_edges(cube, cube_cloud):
+    result = sm.reconstruct(cube_cloud.points, delta=3.5)
+    e = sm.evaluate(result.mesh, cube)
+    assert e["hausdorff"] < 0.01 * e["diagonal"]
+    assert e["sharp_max"] < 0.005 * e["diagonal"]
+    baseline = sm.reconstruct(cube_cloud.points, delta=3.5, no_features=True)
+    assert baseline.features is None and "protection" not in baseline.report
+    assert sm.evaluate(baseline.mesh, cube)["sharp_max"] > e["sharp_max"]
+
+
+def test_given_features_are_protected(cube, cube_cloud):
+    edges = sm.sharp_edges(cube)
+    result = sm.reconstruct(cube_cloud.points, features=edges)
+    assert result.features is None
+    assert result.report["protection"]["polylines"] == len(edges)
+    with pytest.raises(sm.InvalidArgument):
+        sm.reconstruct(cube_cloud.points, features=edges, no_features=True)
+
+
+def test_progress_is_reported_and_can_cancel(cube_cloud):
+    seen = []
+    sm.extract_features(cube_cloud.points, progress=lambda stage, fraction: seen.append((stage, fraction)))
+    assert seen and all(0 <= f <= 1 for _, f in seen)
+    with pytest.raises(sm.Cancelled):
+        sm.reconstruct(cube_cloud.points, progress=lambda stage, fraction: False)
+
+
+def test_an_exception_in_the_callback_reaches_the_caller(cube_cloud):
+    def explode(stage, fraction):
+        raise KeyError("from the callback")
+    with pytest.raises(KeyError, match="from the callback"):
+        sm.extract_features(cube_cloud.points, progress=explode)
+
+
+def test_the_gil_is_released_while_computing(cube_cloud):
+    ticks = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    before = ticks
+    sm.extract_features(cube_cloud.points)  # about a second, no callback
+    done.set()
+    counter.join()
+    assert ticks - before > 50
+
+
+def test_bad_parameters_raise_with_the_cli_message(cube_cloud):
+    with pytest.raises(sm.InvalidArgument):
+        sm.reconstruct(cube_cloud.points, delta=-1)
+    with pytest.raises(sm.InvalidArgument):
+        sm.extract_features(cube_cloud.points, t1=0)
+    with pytest.raises(sm.InvalidInput):
+        sm.reconstruct(np.full((100, 3), np.nan))
