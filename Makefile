@@ -5,7 +5,7 @@ SANITIZE_DIR ?= build-sanitize
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps data configure build demo test test-sanitize bench clean
+.PHONY: all deps data configure build demo readme-figure test test-sanitize bench clean
 
 all: build
 
@@ -23,6 +23,10 @@ build: configure
 
 demo: build data
 	@scripts/demo $(BUILD_DIR)/apps/sharpmesh/sharpmesh
+
+# The README's picture: the demo's reconstruction of fandisk with its feature lines.
+readme-figure: demo
+	@cp demo-output/fandisk.png docs/fandisk.png && echo "docs/fandisk.png updated"
 
 test: build data
 	@ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

@@ -61,7 +61,7 @@ function buildMesh(data, scene) {
     indexed.setAttribute('color', new THREE.BufferAttribute(colors, 3));
     material = new THREE.MeshLambertMaterial({ vertexColors: true, flatShading: true, side: THREE.DoubleSide });
   } else {
-    material = new THREE.MeshStandardMaterial({ color: 0xb8c4d6, roughness: 0.75, metalness: 0.0, flatShading: true, side: THREE.DoubleSide });
+    material = new THREE.MeshStandardMaterial({ color: 0xcfd8e6, roughness: 0.7, metalness: 0.0, flatShading: true, side: THREE.DoubleSide });
   }
   // Keep the surface a little behind lines drawn on it (features, wireframe).
   material.polygonOffset = true;
@@ -71,7 +71,7 @@ function buildMesh(data, scene) {
   geometry.computeVertexNormals();
   scene.add(new THREE.Mesh(geometry, material));
   const wire = new THREE.LineSegments(new THREE.WireframeGeometry(indexed),
-    new THREE.LineBasicMaterial({ color: 0x1d2330, transparent: true, opacity: 0.22 }));
+    new THREE.LineBasicMaterial({ color: 0x1d2330, transparent: true, opacity: Math.min(0.2, 0.2 * Math.sqrt(20000 / data.mesh.facets)) }));
   wire.visible = data.wireframe;
   scene.add(wire);
   return wire;
@@ -121,12 +121,12 @@ function main() {
   renderer.setSize(window.innerWidth, window.innerHeight);
   renderer.setClearColor(0xf5f6f8);
   const scene = new THREE.Scene();
-  scene.add(new THREE.HemisphereLight(0xffffff, 0x606878, 1.4));
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x707888, 1.0));
   const camera = new THREE.PerspectiveCamera(30, window.innerWidth / window.innerHeight, data.diagonal * 1e-3, data.diagonal * 100);
   camera.up.set(0, 0, 1);
-  const key = new THREE.DirectionalLight(0xffffff, 1.6);
+  const key = new THREE.DirectionalLight(0xffffff, 2.2);
   camera.add(key);
-  key.position.set(0.5, 1, 0.2);
+  key.position.set(-0.6, 0.9, 0.5);
   scene.add(camera);
 
   const resolution = new THREE.Vector2(window.innerWidth, window.innerHeight);
@@ -138,7 +138,7 @@ function main() {
   const controls = new OrbitControls(camera, canvas);
   function setView(name) {
     const dir = new THREE.Vector3(...(VIEWS[name] || VIEWS.iso)).normalize();
-    const distance = 0.5 * data.diagonal / Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.08;
+    const distance = 0.5 * data.diagonal / Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) * 0.92;
     camera.position.copy(dir.multiplyScalar(distance));
     if (name === 'top' || name === 'bottom') camera.up.set(0, 1, 0); else camera.up.set(0, 0, 1);
     controls.target.set(0, 0, 0);
