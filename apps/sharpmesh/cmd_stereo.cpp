@@ -11,45 +11,6 @@
 namespace sharpmesh::cli {
 namespace {
 
-namespace fs = std::filesystem;
-
-bool has_strecha_cameras(const std::string& folder) {
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) return false;
-  for (const auto& entry : fs::directory_iterator(folder, ec))
-    if (entry.path().extension() == ".camera") return true;
-  return false;
-}
-
-/// Cameras from MODEL; tracks from MODEL or from --tracks (a tracks PLY, or
-/// COLMAP's fused.ply with its .vis).
-StereoModel load_model(const std::string& model_path, const std::string& tracks_path) {
-  if (has_strecha_cameras(model_path)) {
-    if (tracks_path.empty()) throw InvalidArgument("Strecha cameras (" + model_path + ") need --tracks TRACKS.ply");
-    return read_strecha(model_path, tracks_path);
-  }
-  StereoModel model = read_stereo_model(model_path);
-  if (!tracks_path.empty()) {
-    std::error_code ec;
-    if (fs::exists(tracks_path + ".vis", ec)) {
-      model.tracks = read_colmap_fused(tracks_path, model.cameras).tracks;
-    } else {
-      model.tracks = read_tracks_ply(tracks_path);
-    }
-  }
-  model.validate(tracks_path.empty() ? model_path : tracks_path);
-  return model;
-}
-
-/// MODEL/images, MODEL/../images (MODEL a sparse folder) or the model file's folder.
-std::string default_image_folder(const std::string& model_path) {
-  std::error_code ec;
-  const fs::path p(model_path);
-  for (const fs::path& candidate : {p / "images", p.parent_path() / "images", p.parent_path().parent_path() / "images"})
-    if (!candidate.empty() && fs::is_directory(candidate, ec)) return candidate.string();
-  return fs::is_directory(p, ec) ? p.string() : p.parent_path().string();
-}
-
 /// The soup with only the vertices its triangles use.
 SurfaceMesh compact(const TriangleSoup& soup) {
   SurfaceMesh out;
@@ -141,7 +102,7 @@ Command add_stereo(CLI::App& app) {
     const std::string image_folder = o->images.empty() ? default_image_folder(o->model) : o->images;
     {
       StageTimer timer(io_stages, "read");
-      model = load_model(o->model, o->tracks);
+      model = load_stereo_model(o->model, o->tracks);
       images = read_grey_images(model, image_folder, printer.callback());
     }
     StereoReconstruction result = reconstruct_stereo(model, images, o->stereo, printer.callback());

@@ -63,4 +63,14 @@ std::vector<Track> read_tracks_ply(const std::string& path, std::vector<bool>* o
 /// `sparse/`), a `.out` (with `list.txt` next to it), or an `.nvm` file.
 StereoModel read_stereo_model(const std::string& path);
 
+/// What `sharpmesh stereo MODEL [--tracks FILE]` reads: cameras from MODEL
+/// (as read_stereo_model, or a folder of Strecha .camera files, which needs
+/// `tracks_path`); tracks from MODEL, or from `tracks_path` (a tracks PLY, or
+/// COLMAP's fused.ply when fused.ply.vis is next to it). Validated.
+StereoModel load_stereo_model(const std::string& model_path, const std::string& tracks_path = "");
+
+/// The images of a model: MODEL/images, MODEL/../images, MODEL/../../images,
+/// else the model's own folder.
+std::string default_image_folder(const std::string& model_path);
+
 }  // namespace sharpmesh

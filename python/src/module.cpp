@@ -35,4 +35,5 @@ PYBIND11_MODULE(_core, m) {
   python::bind_reconstruct(m);
   python::bind_eval(m);
   python::bind_view(m);
+  python::bind_stereo(m);
 }

@@ -108,3 +108,17 @@ def test_bad_parameters_raise_with_the_cli_message(cube_cloud):
         sm.extract_features(cube_cloud.points, t1=0)
     with pytest.raises(sm.InvalidInput):
         sm.reconstruct(np.full((100, 3), np.nan))
+
+
+def test_stereo_on_a_generated_scene(tmp_path, cli):
+    scene = tmp_path / "scene"
+    subprocess.run([cli, "make-scene", str(scene), "--views", "8", "--width", "320", "--height", "240", "--seed", "1", "-q"],
+                   check=True)
+    mesh, tracks, report = sm.stereo(str(scene))
+    assert report["counts"]["views"] == 8
+    assert len(tracks) > 100 and len(mesh.faces) > 200
+    truth = sm.read_mesh(str(scene / "ground_truth.ply"))
+    scene_size = 2 * report["half_diagonal"]
+    assert np.median(sm.distances_to_mesh(mesh.vertices, truth)) < 0.01 * scene_size
+    with pytest.raises(sm.InvalidInput):
+        sm.stereo(str(tmp_path / "nowhere"))

@@ -16,7 +16,6 @@
 #include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -108,10 +107,15 @@ int run_with_timeout(const std::vector<std::string>& argv, const fs::path& out, 
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+/// The value of attribute `name` of the page's <body> tag ("" when absent).
 std::string body_attribute(const std::string& dom, const std::string& name) {
-  std::smatch match;
-  const std::regex body("<body[^>]*\\s" + name + "=\"([^\"]*)\"");
-  return std::regex_search(dom, match, body) ? match[1].str() : std::string();
+  const std::size_t body = dom.find("<body");
+  if (body == std::string::npos) return {};
+  const std::string tag = dom.substr(body, dom.find('>', body) - body);
+  const std::size_t at = tag.find(" " + name + "=\"");
+  if (at == std::string::npos) return {};
+  const std::size_t start = at + name.size() + 3;
+  return tag.substr(start, tag.find('"', start) - start);
 }
 
 }  // namespace
