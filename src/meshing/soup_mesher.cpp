@@ -9,7 +9,11 @@
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh_complex_2_in_triangulation_3.h>
 #include <CGAL/Surface_mesh_default_criteria_3.h>
-#include <CGAL/Surface_mesh_default_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_with_circumcenter_3.h>
+#include <CGAL/Robust_circumcenter_traits_3.h>
+#include <CGAL/Surface_mesh_cell_base_3.h>
+#include <CGAL/Surface_mesh_vertex_base_3.h>
 #include <CGAL/make_surface_mesh.h>
 
 #include <algorithm>
@@ -24,8 +28,34 @@
 namespace sharpmesh {
 namespace {
 
-using Tr = CGAL::Surface_mesh_default_triangulation_3;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+/// Adds a creation stamp to a vertex or cell base. CGAL then orders handles by
+/// creation (Time_stamper) instead of by heap address: the facet iterator and
+/// the mesher's refinement queue compare handles, so without the stamp the
+/// mesh depended on where malloc put the cells, which differs between runs
+/// when earlier stages used several threads.
+template <class Base>
+class WithTimeStamp : public Base {
+ public:
+  using Has_timestamp = CGAL::Tag_true;
+  template <class Tds2>
+  struct Rebind_TDS {
+    using Other = WithTimeStamp<typename Base::template Rebind_TDS<Tds2>::Other>;
+  };
+  using Base::Base;
+  std::size_t time_stamp() const { return time_stamp_; }
+  void set_time_stamp(const std::size_t& stamp) { time_stamp_ = stamp; }
+
+ private:
+  std::size_t time_stamp_ = std::size_t(-1);  // -1: not stamped yet (CGAL::Time_stamper)
+};
+
+// CGAL::Surface_mesh_default_triangulation_3 with time-stamped vertices and cells.
+using TrK = CGAL::Robust_circumcenter_traits_3<K>;
+using Vb = WithTimeStamp<CGAL::Surface_mesh_vertex_base_3<TrK>>;
+using Cb = WithTimeStamp<CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<TrK, CGAL::Surface_mesh_cell_base_3<TrK>>>;
+using Tr = CGAL::Delaunay_triangulation_3<TrK, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
 using C2t3 = CGAL::Surface_mesh_complex_2_in_triangulation_3<Tr>;
 using Criteria = CGAL::Surface_mesh_default_criteria_3<Tr>;
 using Triangle3 = K::Triangle_3;

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
+#include <tuple>
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
@@ -56,11 +57,14 @@ std::vector<ScoredEdge> contour_edges(const std::vector<Vec2>& pixels, const std
   std::vector<ScoredEdge> edges;
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
     const auto va = e->first->vertex(Dt::cw(e->second)), vb = e->first->vertex(Dt::ccw(e->second));
-    const std::uint32_t a = va->info().track, b = vb->info().track;
+    const std::uint32_t a = std::min(va->info().track, vb->info().track), b = std::max(va->info().track, vb->info().track);
     const double score =
         contour_edge_score(contours, width, height, pixels[a], pixels[b], options.gap_open, options.gap_extend);
     if (score > 0) edges.push_back({a, b, std::hypot(pixels[a][0] - pixels[b][0], pixels[a][1] - pixels[b][1])});
   }
+  // CGAL's edge order depends on where the heap put its faces: sort, so that
+  // the result does not depend on the thread or the run.
+  std::sort(edges.begin(), edges.end(), [](const ScoredEdge& x, const ScoredEdge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
   return edges;
 }
 
@@ -68,7 +72,7 @@ std::vector<ScoredEdge> contour_edges(const std::vector<Vec2>& pixels, const std
 /// direction, only the shortest survives, so that n aligned ctracks give the
 /// n - 1 edges between consecutive ones.
 std::vector<ScoredEdge> non_overlapping(std::vector<ScoredEdge> edges, const std::vector<Vec2>& pixels, double angle_degrees) {
-  std::sort(edges.begin(), edges.end(), [](const ScoredEdge& x, const ScoredEdge& y) { return x.length < y.length; });
+  std::stable_sort(edges.begin(), edges.end(), [](const ScoredEdge& x, const ScoredEdge& y) { return x.length < y.length; });
   const double cos_limit = std::cos(angle_degrees * M_PI / 180.0);
   std::unordered_map<std::uint32_t, std::vector<Vec2>> directions;  // accepted unit directions leaving each ctrack
   const auto unit = [&](std::uint32_t from, std::uint32_t to) {
@@ -163,8 +167,10 @@ DepthMap build_depth_map(const StereoModel& model, std::uint32_t view, const std
     const Vec3& p0 = model.tracks[t[0]].position;
     const Vec3 normal = cross(model.tracks[t[1]].position - p0, model.tracks[t[2]].position - p0);
     if (dot(normal, center - p0) < 0) std::swap(t[1], t[2]);
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // same triangle, same orientation
     map.triangles.push_back(t);
   }
+  std::sort(map.triangles.begin(), map.triangles.end());  // independent of CGAL's face order (heap addresses)
   return map;
 }
 

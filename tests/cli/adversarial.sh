@@ -163,16 +163,15 @@ PY
       ext=$([[ $f == f ]] && echo txt || echo ply)
       cmp -s ${f}1.$ext ${f}0.$ext || fail "${f}1.$ext and ${f}0.$ext differ: not deterministic across thread counts"
     done ;;
-  deterministic-stereo)  # known gap: with several threads the soup mesher's output varies (see README); one thread is reproducible
+  deterministic-stereo)  # tracks, soup and mesh byte-identical across runs and thread counts
     $bin make-scene sc --views 4 --width 200 --height 150 --samples 4000 --seed 5 -q || fail "make-scene failed"
-    for run in a b; do
-      $bin stereo sc -o m$run.ply --soup s$run.ply --tracks-out t$run.ply --threads 1 -q || fail "stereo failed"
+    for run in 1 0 0b; do
+      $bin stereo sc -o m$run.ply --soup s$run.ply --tracks-out t$run.ply --threads ${run%b} -q || fail "stereo failed"
     done
-    cmp -s ta.ply tb.ply || fail "tracks differ between two runs"
-    cmp -s sa.ply sb.ply || fail "soups differ between two runs"
-    cmp -s ma.ply mb.ply || fail "meshes differ between two runs"
-    $bin stereo sc -o mc.ply --tracks-out tc.ply --threads 0 -q || fail "stereo failed"
-    cmp -s ta.ply tc.ply || fail "tracks differ between 1 thread and all" ;;
+    for f in t s m; do
+      cmp -s ${f}1.ply ${f}0.ply || fail "${f}1.ply and ${f}0.ply differ: not deterministic across thread counts"
+      cmp -s ${f}0.ply ${f}0b.ply || fail "${f}0.ply and ${f}0b.ply differ: not deterministic across runs"
+    done ;;
   stereo-inputs)  # broken camera models and tracks in every stereo reader
     $bin make-scene sc --views 3 --width 64 --height 48 --samples 500 -q || fail "make-scene failed"
     cp -r sc/sparse sparse-ok
