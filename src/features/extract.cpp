@@ -106,8 +106,7 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
   PointSet local = input;
   frame.to_local(local.points);
   FeatureResult result = extract_features_centred(local, options, progress);
-  frame.to_world(result.graph.polylines);
-  for (Junction& j : result.graph.junctions) frame.to_world(j.position);
+  frame.to_world(result);
   return result;
 }
 

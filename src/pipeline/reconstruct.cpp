@@ -50,10 +50,16 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
   result.input_points = input.size();
   result.duplicate_points = duplicates;
   frame.to_world(result.mesh.vertices);
-  frame.to_world(result.features.graph.polylines);
-  for (Junction& j : result.features.graph.junctions) frame.to_world(j.position);
+  frame.to_world(result.features);
   frame.to_world(result.meshing.feature_edges);
-  for (UncoveredGap& gap : result.meshing.uncovered) frame.to_world(gap.center);
+  for (UncoveredGap& gap : result.meshing.uncovered) {
+    frame.to_world(gap.center);
+    gap.length = frame.length_to_world(gap.length);
+    if (gap.gap > 0) gap.gap = frame.length_to_world(gap.gap);
+  }
+  result.meshing.max_gap = frame.length_to_world(result.meshing.max_gap);
+  for (double* length : {&result.average_spacing, &result.d_prime, &result.criteria.edge_length, &result.criteria.distance})
+    *length = frame.length_to_world(*length);
   return result;
 }
 

@@ -69,6 +69,9 @@ rows = {
     "huge-coordinates": lambda: sphere(2000, 1e30),
     "tiny-coordinates": lambda: sphere(2000, 1e-30),
     "far-from-origin": lambda: sphere(2000, 1.0, (1e12, -1e12, 1e12)),
+    "exact-sphere": lambda: sphere(1000),
+    "scale-1e-30": lambda: sphere(2000, 1e-30),
+    "scale-1e100": lambda: sphere(2000, 1e100),
 }[kind]()
 with open(path, "w") as f:
     for p in rows: f.write("%r %r %r\n" % p)
@@ -79,23 +82,35 @@ case "$case_name" in
   duplicated|each-twice|coplanar|tilted-plane|collinear|four-points|huge-coordinates|tiny-coordinates|far-from-origin)
     points "$case_name" c.xyz
     point_commands c.xyz ;;
-  far-from-origin-accuracy)  # recentring: a sphere 1e12 away comes out as well as at the origin
-    points far-from-origin c.xyz
-    $bin reconstruct c.xyz -o m.ply --no-features -q || fail "reconstruct failed far from the origin"
-    $bin info m.ply -q >/dev/null || fail "unreadable output"
-    python3 - <<'PY' || fail "the far sphere is distorted"
-import struct
-data = open("m.ply", "rb").read()
+  far-from-origin-accuracy|extreme-scales)  # recentring and rescaling: the sphere comes out as well anywhere and at any size
+    check_sphere() {  # check_sphere MESH SCALE OFFSET: every vertex within 5% of the sphere
+      python3 - "$@" <<'PY' || fail "the sphere in $1 is distorted"
+import struct, sys
+path, scale, offset = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
+center = (offset, -offset, offset)
+data = open(path, "rb").read()
 header, body = data.split(b"end_header\n", 1)
 n = int([l for l in header.split(b"\n") if l.startswith(b"element vertex")][0].split()[2])
 props = [l for l in header.split(b"\n") if l.startswith(b"property") and b"list" not in l]
 size = 8 if b"double" in props[0] else 4
 fmt = "<" + ("d" if size == 8 else "f") * 3
 step = size * len(props)
-err = max(abs(sum((c - o) ** 2 for c, o in zip(struct.unpack_from(fmt, body, i * step), (1e12, -1e12, 1e12))) ** 0.5 - 1) for i in range(n))
-assert err < 0.05, err
+err = max(abs(sum(((c - o) / scale) ** 2 for c, o in zip(struct.unpack_from(fmt, body, i * step), center)) ** 0.5 - 1) for i in range(n))
+assert n > 20 and err < 0.05, (n, err)
 PY
-    ;;
+    }
+    if [[ $case_name == far-from-origin-accuracy ]]; then
+      points far-from-origin c.xyz
+      $bin reconstruct c.xyz -o m.ply --no-features -q || fail "reconstruct failed far from the origin"
+      check_sphere m.ply 1 1e12
+    else
+      for kind in scale-1e-30 scale-1e100 exact-sphere; do
+        points $kind $kind.xyz
+        scale=${kind#scale-}; [[ $kind == exact-sphere ]] && scale=1
+        $bin reconstruct $kind.xyz -o $kind.ply -q || fail "reconstruct failed on $kind"
+        check_sphere $kind.ply "$scale" 0
+      done
+    fi ;;
   nan-inf-rows)
     points far-from-origin c.xyz
     sed -i '500s/.*/inf 0 0/; 900s/.*/0 -inf nan/' c.xyz
