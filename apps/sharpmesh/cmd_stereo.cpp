@@ -83,6 +83,10 @@ Command add_stereo(CLI::App& app) {
   sub->add_option("--distance", m.distance, "d: maximum facet-to-surface distance, fraction of the half diagonal (6.5)")->capture_default_str();
   sub->add_option("--max-vertices", m.max_vertices, "Stop with an error past this many mesh vertices")->capture_default_str();
   sub->add_option("--seed", m.seed, "Seed of the refinement's initial points")->capture_default_str();
+  sub->add_option("--initial-points", m.initial_points, "Initial points of the refinement (centroids of random soup triangles)")->capture_default_str();
+  sub->add_option("--max-hole", o->stereo.max_hole,
+                  "Fill the mesh's holes whose boundary is shorter than this, fraction of the half diagonal; 0: off (beyond the thesis, its remedy of 6.6)")
+      ->capture_default_str();
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
   common->add_to(*sub);
   auto run = [o, common] {
@@ -130,6 +134,11 @@ Command add_stereo(CLI::App& app) {
                     fs.removed_occluded, fs.occluded_tracks,
                     fs.removed_photo, fs.photo_tested, fs.output);
       printer.message(line);
+      if (o->stereo.max_hole > 0) {
+        std::snprintf(line, sizeof line, "  holes: %zu boundary cycles, %zu filled with %zu facets (%zu not faired, %zu failed)",
+                      result.holes.holes, result.holes.filled, result.holes.added_facets, result.holes.unfaired, result.holes.failed);
+        printer.message(line);
+      }
       printer.message("  mesh: " + std::to_string(result.meshing.mesh.faces.size()) + " facets, " +
                       std::to_string(result.meshing.mesh.vertices.size()) + " vertices -> " + o->output);
       for (const StageTiming& s : stages) {
@@ -144,7 +153,7 @@ Command add_stereo(CLI::App& app) {
         {"images", image_folder},
         {"tracks_input", o->tracks.empty() ? o->model : o->tracks},
         {"output", o->output},
-        {"units", "lengths in data units; merge distance, size and distance as fractions of the tracks' half diagonal"},
+        {"units", "lengths in data units; merge distance, size, distance and max_hole as fractions of the tracks' half diagonal"},
         {"parameters",
          {{"merge_distance", so.tracks.merge_distance}, {"outlier_k", so.tracks.outlier_k},
           {"outlier_sigmas", so.tracks.outlier_sigmas}, {"min_cone_angle_rad", so.tracks.min_cone_angle},
@@ -158,7 +167,8 @@ Command add_stereo(CLI::App& app) {
           {"max_radius_edge", so.filters.max_radius_edge}, {"ncc_threshold", so.filters.ncc_threshold},
           {"photo_consistency", so.filters.photo_consistency},
           {"remove_occluded_tracks", so.filters.remove_occluded_tracks}, {"angle_deg", so.meshing.angle},
-          {"size", so.meshing.size}, {"distance", so.meshing.distance}, {"seed", so.meshing.seed}}},
+          {"size", so.meshing.size}, {"distance", so.meshing.distance}, {"seed", so.meshing.seed},
+          {"max_hole", so.max_hole}}},
         {"derived", {{"half_diagonal", half_diagonal}}},
         {"counts",
          {{"views", model.cameras.size()},
@@ -172,7 +182,10 @@ Command add_stereo(CLI::App& app) {
                     {"removed_anamorphic", fs.removed_anamorphic}, {"photo_tested", fs.photo_tested},
                     {"removed_photo", fs.removed_photo}, {"kept", fs.output}}},
           {"mesh", {{"vertices", result.meshing.mesh.vertices.size()}, {"facets", result.meshing.mesh.faces.size()},
-                    {"refinement_steps", result.meshing.steps}}}}},
+                    {"refinement_steps", result.meshing.steps}}},
+          {"holes", {{"boundary_cycles", result.holes.holes}, {"filled", result.holes.filled},
+                     {"added_facets", result.holes.added_facets}, {"unfaired", result.holes.unfaired},
+                     {"failed", result.holes.failed}}}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     write_report(common->report, report);

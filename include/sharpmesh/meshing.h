@@ -90,6 +90,26 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
 /// no facet uses. Returns the number of facets removed.
 std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance);
 
+/// Hole filling (the remedy of thesis 6.6): boundary cycles up to this
+/// perimeter are closed by a triangulated, refined and faired disc patch.
+struct HoleFillingOptions {
+  double max_perimeter = 0;      ///< data units; 0 fills nothing
+  std::size_t max_edges = 2000;  ///< longer cycles are left open (the patch search is cubic at worst)
+  void check() const;
+};
+
+struct HoleFillingStats {
+  std::size_t holes = 0;         ///< boundary cycles found
+  std::size_t filled = 0;        ///< of those, closed
+  std::size_t unfaired = 0;      ///< closed, but the fairing failed (the patch is only refined)
+  std::size_t failed = 0;        ///< short enough, but no patch was found
+  std::size_t added_facets = 0;
+};
+
+/// Fills the holes of `mesh` (any orientation, non-manifold vertices
+/// allowed) whose perimeter is at most options.max_perimeter.
+HoleFillingStats fill_holes(SurfaceMesh& mesh, const HoleFillingOptions& options, const Progress& progress = {});
+
 /// Number of mesh edges with exactly one incident facet.
 std::size_t count_boundary_edges(const SurfaceMesh& mesh);
 

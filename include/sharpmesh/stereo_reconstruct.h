@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "sharpmesh/meshing.h"
 #include "sharpmesh/progress.h"
 #include "sharpmesh/stereo.h"
 #include "sharpmesh/timing.h"
@@ -197,7 +198,8 @@ struct SoupMeshingOptions {
   double angle = 20.0;      ///< alpha, degrees (6.5)
   double size = 0.01;       ///< l: bound on the surface Delaunay ball radius (6.5: 0.01 and 0.035)
   double distance = 0.002;  ///< d (6.5: 0.002 and 0.01)
-  int initial_points = 1000;
+  int initial_points = 1000;  ///< centroids of random soup triangles
+  bool seed_cells = true;     ///< also one seed per occupied cell of a grid of step 4l
   std::size_t max_vertices = 2'000'000;  ///< stop with an error past this many vertices
   std::uint32_t seed = 0;
   void check() const;
@@ -206,6 +208,7 @@ struct SoupMeshingOptions {
 struct SoupMeshingResult {
   SurfaceMesh mesh;
   std::size_t steps = 0;
+  double half_diagonal = 0;  ///< of the soup's bounding box: the unit of l and d
 };
 
 /// Boissonnat-Oudot Delaunay refinement whose oracle intersects a query
@@ -225,6 +228,9 @@ struct StereoReconstructionOptions {
   DepthMapOptions depth_maps;
   SoupFilterOptions filters;
   SoupMeshingOptions meshing;
+  /// Beyond the thesis (its remedy in 6.6): holes of the mesh whose boundary
+  /// is shorter than this are filled, fraction of the half diagonal; 0: off.
+  double max_hole = 0.0;
   void check() const;
 };
 
@@ -238,6 +244,7 @@ struct StereoReconstruction {
   SoupFilterStats filters;
   TriangleSoup soup;                   ///< filtered soup
   SoupMeshingResult meshing;
+  HoleFillingStats holes;
   /// Wall time and memory of: tracks (6.3.1), depth maps, soup filters, meshing.
   std::vector<StageTiming> stages;
 };

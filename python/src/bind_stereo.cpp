@@ -12,7 +12,7 @@ void bind_stereo(py::module_& m) {
         [](const std::string& model_path, const std::string& images, const std::string& tracks, double merge_distance,
            int outlier_k, int smooth_k, double min_cone_angle, double canny_sigma, double canny_low, double canny_high,
            int max_crossings, double grazing_angle, double ncc, bool no_photo, bool no_track_photo, double angle, double size,
-           double distance, std::uint32_t seed, const py::object& progress) {
+           double distance, std::uint32_t seed, double max_hole, const py::object& progress) {
           StereoReconstructionOptions o;
           o.tracks.merge_distance = merge_distance;
           o.tracks.outlier_k = outlier_k;
@@ -30,6 +30,7 @@ void bind_stereo(py::module_& m) {
           o.meshing.size = size;
           o.meshing.distance = distance;
           o.meshing.seed = seed;
+          o.max_hole = max_hole;
           o.check();
           ProgressBridge bridge(progress);
           StereoReconstruction r;
@@ -46,6 +47,7 @@ void bind_stereo(py::module_& m) {
           counts["soup_triangles"] = r.soup_triangles;
           counts["soup_kept"] = r.filters.output;
           counts["facets"] = r.meshing.mesh.faces.size();
+          counts["holes_filled"] = r.holes.filled;
           py::dict report;
           report["counts"] = counts;
           report["half_diagonal"] = r.tracks.half_diagonal;
@@ -62,12 +64,12 @@ void bind_stereo(py::module_& m) {
         py::arg("grazing_angle") = d.filters.grazing_angle, py::arg("ncc") = d.filters.ncc_threshold,
         py::arg("no_photo") = false, py::arg("no_track_photo") = false, py::arg("angle") = d.meshing.angle,
         py::arg("size") = d.meshing.size, py::arg("distance") = d.meshing.distance, py::arg("seed") = d.meshing.seed,
-        py::arg("progress") = py::none(),
+        py::arg("max_hole") = d.max_hole, py::arg("progress") = py::none(),
         R"(Calibrated images and tracks -> mesh, as `sharpmesh stereo MODEL` (thesis Ch. 6) -> (Mesh, tracks (n, 3), report).
 
 model: a COLMAP model folder, a Bundler .out, an .nvm, or a folder of Strecha .camera files (with tracks=);
 images: their folder (default: MODEL/images or next to it); tracks: a tracks PLY or COLMAP's fused.ply (with .vis).
-merge_distance, size and distance are fractions of the tracks' half diagonal; the other options are those of the CLI.)");
+merge_distance, size, distance and max_hole are fractions of the tracks' half diagonal; the other options are those of the CLI.)");
 }
 
 }  // namespace sharpmesh::python

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <unordered_set>
 
 #include "pointset/cgal_bridge.h"
 #include "sharpmesh/errors.h"
@@ -183,6 +184,22 @@ SoupMeshingResult mesh_soup(const TriangleSoup& soup, const SoupMeshingOptions& 
     const Triangle3& t = data->triangles[static_cast<std::size_t>(random.get_int(0, static_cast<int>(data->triangles.size())))];
     data->seeds.push_back(CGAL::centroid(t));
   }
+  // Beyond the thesis: also one seed per occupied cell of a grid of step 4l,
+  // so that no part of the soup larger than a cell is left unmeshed for want
+  // of a seed (random seeds alone missed patches of far ground: 2 points of
+  // completeness at 2% on a fused-points scene).
+  if (options.seed_cells) {
+    const double cell = 4 * options.size * half_diagonal;
+    const Vec3 origin = bounding_box(used).min;
+    std::unordered_set<std::uint64_t> occupied;
+    for (const Triangle3& t : data->triangles) {
+      const K::Point_3 c = CGAL::centroid(t);
+      std::uint64_t key = 0;
+      for (int k = 0; k < 3; ++k)
+        key = key * 2097152u + static_cast<std::uint64_t>(std::min(2097151.0, std::floor((c[k] - origin[k]) / cell)));
+      if (occupied.insert(key).second) data->seeds.push_back(c);
+    }
+  }
   const SoupOracle oracle(data);
   Tr tr;
   C2t3 c2t3(tr);
@@ -205,6 +222,7 @@ SoupMeshingResult mesh_soup(const TriangleSoup& soup, const SoupMeshingOptions& 
   // Expected vertices: about one per (area of a Delaunay ball of radius l).
   const double expected = std::max(1.0, area / (M_PI * std::pow(options.size * half_diagonal, 2)));
   SoupMeshingResult result;
+  result.half_diagonal = half_diagonal;
   CGAL::Null_mesh_visitor visitor;
   while (!mesher.is_algorithm_done()) {
     mesher.one_step(visitor);

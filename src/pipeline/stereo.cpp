@@ -1,6 +1,6 @@
 // The Chapter 6 pipeline: tracks (6.3.1) -> contour-respecting depth maps
 // and a triangle soup (6.3.2) -> filtered soup (6.3.2) -> Delaunay
-// refinement with the soup as the oracle (6.3.3).
+// refinement with the soup as the oracle (6.3.3) -> hole filling (6.6).
 #include <tbb/parallel_for.h>
 
 #include "sharpmesh/errors.h"
@@ -14,6 +14,7 @@ void StereoReconstructionOptions::check() const {
   depth_maps.check();
   filters.check();
   meshing.check();
+  if (!(max_hole >= 0 && max_hole <= 10)) throw InvalidArgument("the largest hole to fill must be in [0, 10] half diagonals, got " + format_number(max_hole));
 }
 
 StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<GreyImage>& images,
@@ -67,6 +68,12 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
   {
     StageTimer timer(result.stages, "meshing");
     result.meshing = mesh_soup(result.soup, options.meshing, progress);
+  }
+  if (options.max_hole > 0) {
+    StageTimer timer(result.stages, "hole filling");
+    HoleFillingOptions holes;
+    holes.max_perimeter = options.max_hole * result.meshing.half_diagonal;
+    result.holes = fill_holes(result.meshing.mesh, holes, progress);
   }
   return result;
 }

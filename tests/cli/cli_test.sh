@@ -176,12 +176,27 @@ PY
     # A coarser mesh from the same soup: fewer facets.
     $bin stereo sc -o coarse.ply --size 0.035 --distance 0.01 --report rc.json -q || fail "coarse stereo failed"
     python3 -c "import json; a=json.load(open('r.json')); b=json.load(open('rc.json')); assert b['counts']['mesh']['facets'] < a['counts']['mesh']['facets'] / 3, (a['counts']['mesh'], b['counts']['mesh'])" \
-      || fail "--size/--distance do not coarsen" ;;
+      || fail "--size/--distance do not coarsen"
+    # Hole filling: fewer border edges, a report of what was filled.
+    $bin stereo sc -o filled.ply --max-hole 0.2 --report rh.json -q || fail "stereo --max-hole failed"
+    python3 - <<'PY' || fail "hole filling did not fill"
+import json
+r = json.load(open("rh.json"))
+h = r["counts"]["holes"]
+assert h["boundary_cycles"] > 0 and 0 < h["filled"] <= h["boundary_cycles"] and h["added_facets"] > 0, h
+assert r["counts"]["mesh"]["facets"] > json.load(open("r.json"))["counts"]["mesh"]["facets"], r["counts"]["mesh"]
+assert "hole filling" in [s["name"] for s in r["stages"]] and r["parameters"]["max_hole"] == 0.2, r["stages"]
+PY
+    $bin eval m.ply --reference m.ply --samples 2000 --report em.json -q || fail "eval failed"
+    $bin eval filled.ply --reference m.ply --samples 2000 --report eh.json -q || fail "eval failed"
+    python3 -c "import json; a=json.load(open('em.json'))['evaluation']['topology']; b=json.load(open('eh.json'))['evaluation']['topology']; assert b['boundary_edges'] < a['boundary_edges'], (a, b)" \
+      || fail "the filled mesh has as many border edges" ;;
   stereo-bad)
     $bin make-scene sc --views 3 --width 64 --height 48 --samples 500 -q || fail "make-scene failed"
     expect_error 1 "no/such" "m.ply" $bin stereo no/such -o m.ply
     expect_error 2 "size bound" "m.ply" $bin stereo sc -o m.ply --size 0
     expect_error 2 "cone angle" "m.ply" $bin stereo sc -o m.ply --min-cone-angle -1
+    expect_error 2 "largest hole" "m.ply" $bin stereo sc -o m.ply --max-hole -1
     cp sc/images/view_000.png keep.png
     cp sc/images/view_001.png sc/images/view_000.png
     printf 'not an image' > sc/images/view_001.png

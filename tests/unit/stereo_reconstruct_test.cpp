@@ -5,6 +5,8 @@
 // to end against its ground truth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -229,6 +231,84 @@ TEST(SoupMeshing, AFlatSoupGivesAFlatMeshCoveringIt) {
   options.size = 1e-6;
   EXPECT_THROW(mesh_soup(soup, options), InvalidArgument);
   EXPECT_THROW(mesh_soup(TriangleSoup{}, {}), InvalidInput);
+}
+
+TEST(SoupMeshing, EveryPatchOfTheSoupIsMeshedNotOnlyWhereRandomSeedsFall) {
+  // A 10 x 10 square of 7,200 triangles and four 1 x 1 squares of 32 each,
+  // off to the side: random seeds (one soup triangle each) rarely fall on the
+  // small squares; the grid seeds always do.
+  TriangleSoup soup;
+  const auto add_square = [&soup](double x, double y, double z, double side, int n) {
+    const auto base = static_cast<std::uint32_t>(soup.vertices.size());
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) soup.vertices.push_back({x + side * i / n, y + side * j / n, z});
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const auto v = base + static_cast<std::uint32_t>(j * (n + 1) + i);
+        soup.faces.push_back({v, v + 1, v + static_cast<std::uint32_t>(n) + 2});
+        soup.faces.push_back({v, v + static_cast<std::uint32_t>(n) + 2, v + static_cast<std::uint32_t>(n) + 1});
+      }
+  };
+  add_square(0, 0, 0, 10, 60);
+  for (int k = 1; k <= 4; ++k) add_square(14, 2.5 * k - 2, 0.5, 1, 4);
+  SoupMeshingOptions options;
+  options.initial_points = 100;
+  options.size = 0.01;
+  options.distance = 0.002;
+  const auto facets_on_small_squares = [](const SurfaceMesh& mesh) {
+    std::array<int, 4> count{};
+    for (const Triangle& f : mesh.faces) {
+      const Vec3 c = (1.0 / 3) * (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]);
+      if (c[0] < 13.5) continue;
+      EXPECT_NEAR(c[2], 0.5, 0.01);
+      const int k = static_cast<int>(std::floor((c[1] + 2) / 2.5));
+      if (k >= 1 && k <= 4) ++count[static_cast<std::size_t>(k - 1)];
+    }
+    return count;
+  };
+  const std::array<int, 4> with_grid = facets_on_small_squares(mesh_soup(soup, options).mesh);
+  for (int k = 0; k < 4; ++k) EXPECT_GT(with_grid[static_cast<std::size_t>(k)], 4) << "small square " << k + 1 << " was not meshed";
+  options.seed_cells = false;  // the thesis's random seeds alone
+  const std::array<int, 4> random_only = facets_on_small_squares(mesh_soup(soup, options).mesh);
+  EXPECT_TRUE(std::count(random_only.begin(), random_only.end(), 0) > 0) << "random seeds found every small square: the test proves nothing";
+}
+
+TEST(HoleFilling, ShortHolesAreClosedAndLongOnesKept) {
+  SurfaceMesh sphere = test::sphere_mesh(3);
+  ASSERT_EQ(count_boundary_edges(sphere), 0u);
+  // Two holes: one facet removed at the north pole, a band of facets elsewhere.
+  std::vector<Triangle> kept;
+  std::size_t removed = 0;
+  for (const Triangle& f : sphere.faces) {
+    const Vec3 c = (1.0 / 3) * (sphere.vertices[f[0]] + sphere.vertices[f[1]] + sphere.vertices[f[2]]);
+    if ((c[2] > 0.97) || (c[0] > 0.6 && std::abs(c[2]) < 0.3)) {
+      ++removed;
+      continue;
+    }
+    kept.push_back(f);
+  }
+  ASSERT_GT(removed, 4u);
+  SurfaceMesh holed{sphere.vertices, kept};
+  ASSERT_GT(count_boundary_edges(holed), 0u);
+
+  SurfaceMesh none = holed;
+  HoleFillingOptions options;
+  options.max_perimeter = 1e-3;
+  const HoleFillingStats small = fill_holes(none, options);
+  EXPECT_EQ(small.holes, 2u);
+  EXPECT_EQ(small.filled, 0u);
+  EXPECT_EQ(none.faces.size(), holed.faces.size());
+
+  options.max_perimeter = 10;
+  const HoleFillingStats all = fill_holes(holed, options);
+  EXPECT_EQ(all.holes, 2u);
+  EXPECT_EQ(all.filled, 2u);
+  EXPECT_EQ(all.failed, 0u);
+  EXPECT_EQ(count_boundary_edges(holed), 0u) << "filled holes leave no border";
+  for (const Vec3& v : holed.vertices) EXPECT_NEAR(norm(v), 1.0, 0.08) << "the faired patches follow the sphere";
+
+  options.max_perimeter = -1;
+  EXPECT_THROW(fill_holes(holed, options), InvalidArgument);
 }
 
 TEST(StereoReconstruction, AGeneratedSceneIsReconstructedAccuratelyAndCompletely) {
