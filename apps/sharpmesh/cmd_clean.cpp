@@ -1,9 +1,7 @@
 // sharpmesh clean CLOUD -o OUT: the toolbox of the thesis's Appendix A, in
 // the order of its pipeline (Fig. A.2): outliers, simplification, smoothing,
 // normal estimation, normal orientation.
-#include <cmath>
 #include <optional>
-#include <cstdio>
 
 #include "cli.h"
 #include "sharpmesh/io.h"
@@ -63,57 +61,46 @@ Command add_clean(CLI::App& app) {
   auto run = [o, common] {
     check_output(o->output, "points");
     check_output(common->report, "report");
-    if (o->outlier_sigmas != -1 && !(o->outlier_sigmas > 0)) throw InvalidArgument("--outliers-sigma must be positive");
-    if (o->grid_cell && !(*o->grid_cell > 0 && std::isfinite(*o->grid_cell))) throw InvalidArgument("--grid must be a positive multiple of the average spacing");
-    if (o->smooth_k != 0 && o->smooth_k < 6) throw InvalidArgument("--smooth needs at least 6 neighbours to fit a quadric");
+    CleanOptions options;
+    if (o->outlier_percentage >= 0) options.outliers = PercentageOutlierOptions{o->outlier_k, o->outlier_percentage};
+    if (o->outlier_sigmas != -1) options.outliers_sigma = SigmaOutlierOptions{o->sigma_k, o->outlier_sigmas};
+    options.grid_cell = o->grid_cell;
+    if (o->random_percentage >= 0) options.random_percentage = o->random_percentage;
+    options.seed = o->seed;
+    if (o->smooth_k != 0) options.smoothing = JetSmoothingOptions{o->smooth_k};
+    if (!o->normals.empty())
+      options.normals = NormalEstimationOptions{o->normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, o->normal_k};
+    if (o->orient)
+      options.orientation = o->orient_method == "cgal" ? CleanOptions::Orientation::CgalMst : CleanOptions::Orientation::TangentMst;
+    options.orient_k = o->orient_k;
+    options.check();
     ProgressPrinter printer(common->quiet);
-    const Progress progress = printer.callback();
     std::vector<StageTiming> stages;
-    nlohmann::json counts;
     PointSet points;
     {
       StageTimer stage(stages, "read");
       points = read_point_set(o->input);
     }
     check_point_set(points, 1, o->input.c_str());
-    counts["input"] = points.size();
-    if (o->outlier_percentage >= 0) {
-      StageTimer stage(stages, "outliers");
-      counts["removed_outliers"] = remove_outliers_percentage(points, {o->outlier_k, o->outlier_percentage}, progress);
+    CleanStats stats;
+    try {
+      stats = clean_point_set(points, options, printer.callback());
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(o->input + ": " + e.what());
     }
-    if (o->outlier_sigmas > 0) {
-      StageTimer stage(stages, "outliers-sigma");
-      counts["removed_outliers_sigma"] = remove_outliers_sigma(points, {o->sigma_k, o->outlier_sigmas}, progress);
-    }
-    if (o->grid_cell) {
-      StageTimer stage(stages, "grid simplification");
-      const double spacing = average_spacing(points, 6, progress);
-      counts["removed_grid"] = grid_simplify(points, *o->grid_cell * spacing);
-    }
-    if (o->random_percentage >= 0) {
-      StageTimer stage(stages, "random simplification");
-      counts["removed_random"] = random_simplify(points, o->random_percentage, o->seed);
-    }
-    if (o->smooth_k > 0) {
-      StageTimer stage(stages, "smoothing");
-      jet_smooth(points, {o->smooth_k}, progress);
-    }
-    if (!o->normals.empty()) {
-      StageTimer stage(stages, "normals");
-      estimate_normals(points, {o->normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, o->normal_k}, progress);
-    }
-    if (o->orient) {
-      StageTimer stage(stages, "orientation");
-      if (o->orient_method == "cgal") counts["unoriented_removed"] = orient_normals_mst(points, {o->orient_k, true}, progress);
-      else counts["orientation_components"] = orient_normals_tangent_mst(points, o->orient_k, progress);
-    }
-    if (points.empty()) throw InvalidInput(o->input + ": no point left after cleaning");
+    stages.insert(stages.end(), stats.stages.begin(), stats.stages.end());
+    nlohmann::json counts = {{"input", stats.input}, {"output", stats.output}};
+    if (options.outliers) counts["removed_outliers"] = stats.removed_outliers;
+    if (options.outliers_sigma) counts["removed_outliers_sigma"] = stats.removed_outliers_sigma;
+    if (options.grid_cell) counts["removed_grid"] = stats.removed_grid;
+    if (options.random_percentage) counts["removed_random"] = stats.removed_random;
+    if (options.orientation == CleanOptions::Orientation::CgalMst) counts["unoriented_removed"] = stats.unoriented_removed;
+    if (options.orientation == CleanOptions::Orientation::TangentMst) counts["orientation_components"] = stats.orientation_components;
     {
       StageTimer stage(stages, "write");
       write_point_set(o->output, points, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
     }
-    counts["output"] = points.size();
-    if (!common->quiet) printer.message("clean: " + std::to_string(counts["input"].get<std::size_t>()) + " -> " +
+    if (!common->quiet) printer.message("clean: " + std::to_string(stats.input) + " -> " +
                                         std::to_string(points.size()) + " points, written to " + o->output);
     write_report(common->report, {{"command", "clean"},
                                   {"input", o->input},

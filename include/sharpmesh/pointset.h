@@ -4,8 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <vector>
 
 #include "sharpmesh/progress.h"
+#include "sharpmesh/timing.h"
 #include "sharpmesh/types.h"
 
 namespace sharpmesh {
@@ -87,5 +90,34 @@ std::size_t orient_normals_mst(PointSet& points, const NormalOrientationOptions&
 /// oriented (each connected component of the k-nearest-neighbour graph from
 /// its highest point, normal up); returns the number of components.
 std::size_t orient_normals_tangent_mst(PointSet& points, int k = 18, const Progress& progress = {});
+
+/// The toolbox as one pipeline, in the order of the thesis's Fig. A.2:
+/// outliers, simplification, smoothing, normals, orientation. A step runs
+/// when its option is set.
+struct CleanOptions {
+  std::optional<PercentageOutlierOptions> outliers;  ///< App. A.4
+  std::optional<SigmaOutlierOptions> outliers_sigma;  ///< 6.3.1
+  std::optional<double> grid_cell;                    ///< App. A.5, multiples of the average spacing
+  std::optional<double> random_percentage;            ///< App. A.5
+  std::uint64_t seed = 0;                             ///< of the random simplification
+  std::optional<JetSmoothingOptions> smoothing;       ///< App. A.6
+  std::optional<NormalEstimationOptions> normals;     ///< App. A.7
+  enum class Orientation { None, TangentMst, CgalMst };
+  Orientation orientation = Orientation::None;        ///< App. A.8
+  int orient_k = 18;
+  /// Throws InvalidArgument for values no cloud accepts (the k checks need the cloud).
+  void check() const;
+};
+
+struct CleanStats {
+  std::size_t input = 0, output = 0;
+  std::size_t removed_outliers = 0, removed_outliers_sigma = 0, removed_grid = 0, removed_random = 0;
+  std::size_t unoriented_removed = 0;       ///< CGAL's MST orientation
+  std::size_t orientation_components = 0;   ///< tangent MST orientation
+  std::vector<StageTiming> stages;
+};
+
+/// Runs the steps of `options` on `points`; throws InvalidInput when no point is left.
+CleanStats clean_point_set(PointSet& points, const CleanOptions& options, const Progress& progress = {});
 
 }  // namespace sharpmesh

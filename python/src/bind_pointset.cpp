@@ -1,8 +1,6 @@
 // The point-set toolbox (thesis App. A; sharpmesh/pointset.h), with the
 // options of `sharpmesh clean` in the same order: outliers, simplification,
 // smoothing, normals, orientation.
-#include <cmath>
-
 #include "convert.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
@@ -23,27 +21,23 @@ void bind_pointset(py::module_& m) {
            std::uint64_t seed, int smooth, std::optional<std::string> normals, int normal_k, bool orient, int orient_k,
            const std::string& orient_method, const py::object& progress) {
           PointSet set = to_point_set(points, point_normals);
-          if (outliers && !(*outliers >= 0 && *outliers <= 100)) throw InvalidArgument("outliers must be a percentage in [0, 100]");
-          if (outliers_sigma && !(*outliers_sigma > 0)) throw InvalidArgument("outliers_sigma must be positive");
-          if (grid && !(*grid > 0 && std::isfinite(*grid))) throw InvalidArgument("grid must be a positive multiple of the average spacing");
-          if (random && !(*random >= 0 && *random <= 100)) throw InvalidArgument("random must be a percentage in [0, 100]");
-          if (smooth != 0 && smooth < 6) throw InvalidArgument("smooth needs at least 6 neighbours to fit a quadric");
           if (normals && *normals != "pca" && *normals != "jet") throw InvalidArgument("normals must be 'pca' or 'jet'");
           if (orient_method != "tangent" && orient_method != "cgal") throw InvalidArgument("orient_method must be 'tangent' or 'cgal'");
+          CleanOptions options;
+          if (outliers) options.outliers = PercentageOutlierOptions{outlier_k, *outliers};
+          if (outliers_sigma) options.outliers_sigma = SigmaOutlierOptions{sigma_k, *outliers_sigma};
+          options.grid_cell = grid;
+          options.random_percentage = random;
+          options.seed = seed;
+          if (smooth != 0) options.smoothing = JetSmoothingOptions{smooth};
+          if (normals) options.normals = NormalEstimationOptions{*normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, normal_k};
+          if (orient) options.orientation = orient_method == "cgal" ? CleanOptions::Orientation::CgalMst : CleanOptions::Orientation::TangentMst;
+          options.orient_k = orient_k;
+          options.check();
           ProgressBridge bridge(progress);
           without_gil(bridge, [&] {
-            const Progress callback = bridge.callback();
             check_point_set(set, 1, "points");
-            if (outliers) remove_outliers_percentage(set, {outlier_k, *outliers}, callback);
-            if (outliers_sigma) remove_outliers_sigma(set, {sigma_k, *outliers_sigma}, callback);
-            if (grid) grid_simplify(set, *grid * average_spacing(set, 6, callback));
-            if (random) random_simplify(set, *random, seed);
-            if (smooth > 0) jet_smooth(set, {smooth}, callback);
-            if (normals) estimate_normals(set, {*normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, normal_k}, callback);
-            if (orient) {
-              if (orient_method == "cgal") orient_normals_mst(set, {orient_k, true}, callback);
-              else orient_normals_tangent_mst(set, orient_k, callback);
-            }
+            clean_point_set(set, options, bridge.callback());
           });
           return make_point_cloud(set);
         },
