@@ -189,3 +189,38 @@ TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
   EXPECT_THROW(orient_normals_tangent_mst(bare, 18), InvalidArgument);
   std::printf("flipped normals on a thin slab: tangent MST %.4f, CGAL MST %.4f\n", ours_flipped, cgal_flipped);
 }
+
+TEST(Clean, RunsTheStepsOfFigureA2InOrder) {
+  PointSet ps = sphere_points(5000);
+  for (int i = 0; i < 10; ++i)  // outliers 2 radii off the unit sphere, in 10 directions
+    ps.points.push_back({3 * std::cos(0.628 * i), 3 * std::sin(0.628 * i), i % 2 ? 0.5 : -0.5});
+  CleanOptions options;
+  options.outliers_sigma = SigmaOutlierOptions{24, 3.0};
+  options.random_percentage = 10;
+  options.smoothing = JetSmoothingOptions{24};
+  options.normals = NormalEstimationOptions{NormalMethod::Jet, 18};
+  options.orientation = CleanOptions::Orientation::TangentMst;
+  const CleanStats stats = clean_point_set(ps, options);
+  EXPECT_EQ(stats.input, 5010u);
+  EXPECT_EQ(stats.removed_outliers_sigma, 10u);
+  EXPECT_EQ(stats.removed_random, 500u);
+  EXPECT_EQ(stats.output, 4500u);
+  ASSERT_EQ(ps.size(), 4500u);
+  std::vector<std::string> names;
+  for (const StageTiming& s : stats.stages) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"outliers-sigma", "random simplification", "smoothing", "normals", "orientation"}));
+  ASSERT_TRUE(ps.has_normals());
+  std::size_t outward = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) outward += dot(ps.normals[i], ps.points[i]) > 0;
+  EXPECT_TRUE(outward == ps.size() || outward == 0) << "one consistent orientation";
+
+  CleanOptions bad;
+  bad.smoothing = JetSmoothingOptions{3};
+  EXPECT_THROW(clean_point_set(ps, bad), InvalidArgument);
+  bad = {};
+  bad.grid_cell = -1.0;
+  EXPECT_THROW(clean_point_set(ps, bad), InvalidArgument);
+  bad = {};
+  bad.outliers = PercentageOutlierOptions{24, 100.0};
+  EXPECT_THROW(clean_point_set(ps, bad), InvalidInput) << "nothing left";
+}
