@@ -62,8 +62,11 @@ Command add_stereo(CLI::App& app) {
   sub->add_flag("--no-track-photo", o->no_track_photo, "Keep every track whatever its image windows look like (the thesis)");
   auto& d = o->stereo.depth_maps;
   sub->add_option("--canny-sigma", d.canny_sigma, "Gaussian blur before Canny, pixels (6.3.2)")->capture_default_str();
-  sub->add_option("--canny-low", d.canny_low, "Canny hysteresis low threshold (gradient magnitude, 8-bit scale)")->capture_default_str();
+  sub->add_option("--canny-low", d.canny_low, "Canny hysteresis low threshold (gradient magnitude, 8-bit scale; scaled by the image contrast unless --canny-fixed)")->capture_default_str();
   sub->add_option("--canny-high", d.canny_high, "Canny hysteresis high threshold")->capture_default_str();
+  sub->add_flag("!--canny-fixed", d.canny_adaptive,
+                "Use the Canny thresholds as given, not scaled by each image's contrast (the thesis; default: scaled by the "
+                "99th-percentile gradient magnitude over 100)");
   sub->add_option("--contour-distance", d.contour_distance, "A track is a ctrack when it projects this close to a contour, pixels")->capture_default_str();
   sub->add_option("--gap-open", d.gap_open, "o: gap opening penalty of the contour-edge score (6.3.2)")->capture_default_str();
   sub->add_option("--gap-extend", d.gap_extend, "e: gap extension penalty (6.3.2)")->capture_default_str();
@@ -160,6 +163,7 @@ Command add_stereo(CLI::App& app) {
           {"smooth_k", so.tracks.smooth_k}, {"track_photo", so.track_photo.enabled},
           {"track_ncc", so.track_photo.min_ncc}, {"track_window", 2 * so.track_photo.half_window + 1}, {"canny_sigma", so.depth_maps.canny_sigma},
           {"canny_low", so.depth_maps.canny_low}, {"canny_high", so.depth_maps.canny_high},
+          {"canny_adaptive", so.depth_maps.canny_adaptive},
           {"contour_distance_px", so.depth_maps.contour_distance}, {"gap_open", so.depth_maps.gap_open},
           {"gap_extend", so.depth_maps.gap_extend}, {"overlap_angle_deg", so.depth_maps.overlap_angle},
           {"max_crossings", so.filters.max_crossings}, {"sight_margin_spacings", so.filters.sight_margin},

@@ -92,6 +92,11 @@ struct DepthMapOptions {
   double canny_sigma = 2.0;       ///< Gaussian blur before Canny, pixels
   double canny_low = 20.0;        ///< hysteresis thresholds on the Sobel gradient
   double canny_high = 60.0;       ///<   magnitude of the blurred image (8-bit scale)
+  /// Beyond the thesis: scale both thresholds by the image's contrast (its
+  /// 99th-percentile gradient magnitude over 100, that of the generated
+  /// scenes), so that a darker or flatter image keeps its contours (at 30%
+  /// contrast, the fixed thresholds find no contour at all).
+  bool canny_adaptive = true;
   double contour_distance = 1.5;  ///< a ctrack projects this close to an edge pixel, pixels
   double gap_open = 0.5;          ///< o of the affine gap penalty
   double gap_extend = 2.0;        ///< e of the affine gap penalty

@@ -11,6 +11,7 @@ void bind_stereo(py::module_& m) {
   m.def("stereo",
         [](const std::string& model_path, const std::string& images, const std::string& tracks, double merge_distance,
            int outlier_k, int smooth_k, double min_cone_angle, double canny_sigma, double canny_low, double canny_high,
+           bool canny_fixed,
            int max_crossings, double grazing_angle, double ncc, bool no_photo, bool no_track_photo, double angle, double size,
            double distance, std::uint32_t seed, double max_hole, const py::object& progress) {
           StereoReconstructionOptions o;
@@ -22,6 +23,7 @@ void bind_stereo(py::module_& m) {
           o.depth_maps.canny_sigma = canny_sigma;
           o.depth_maps.canny_low = canny_low;
           o.depth_maps.canny_high = canny_high;
+          o.depth_maps.canny_adaptive = !canny_fixed;
           o.filters.max_crossings = max_crossings;
           o.filters.grazing_angle = grazing_angle;
           o.filters.ncc_threshold = ncc;
@@ -60,7 +62,7 @@ void bind_stereo(py::module_& m) {
         py::arg("merge_distance") = d.tracks.merge_distance, py::arg("outlier_k") = d.tracks.outlier_k,
         py::arg("smooth_k") = d.tracks.smooth_k, py::arg("min_cone_angle") = d.tracks.min_cone_angle,
         py::arg("canny_sigma") = d.depth_maps.canny_sigma, py::arg("canny_low") = d.depth_maps.canny_low,
-        py::arg("canny_high") = d.depth_maps.canny_high, py::arg("max_crossings") = d.filters.max_crossings,
+        py::arg("canny_high") = d.depth_maps.canny_high, py::arg("canny_fixed") = false, py::arg("max_crossings") = d.filters.max_crossings,
         py::arg("grazing_angle") = d.filters.grazing_angle, py::arg("ncc") = d.filters.ncc_threshold,
         py::arg("no_photo") = false, py::arg("no_track_photo") = false, py::arg("angle") = d.meshing.angle,
         py::arg("size") = d.meshing.size, py::arg("distance") = d.meshing.distance, py::arg("seed") = d.meshing.seed,

@@ -3,7 +3,9 @@
 // the affine-gap score of a segment over them (Needleman & Wunsch 1970).
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
@@ -29,9 +31,24 @@ std::vector<std::uint8_t> detect_contours(const std::vector<std::uint8_t>& grey,
     cv::GaussianBlur(image, blurred, cv::Size(0, 0), options.canny_sigma);
   else
     blurred = image;
+  double scale = 1.0;
+  if (options.canny_adaptive) {
+    // The thresholds hold for an image whose 99th-percentile gradient
+    // magnitude (its strong edges) is kReferenceContrast, as in the generated
+    // scenes (95-130); others get them scaled in proportion.
+    constexpr double kReferenceContrast = 100.0;
+    cv::Mat gx, gy, magnitude;
+    cv::Sobel(blurred, gx, CV_32F, 1, 0, 3);
+    cv::Sobel(blurred, gy, CV_32F, 0, 1, 3);
+    cv::magnitude(gx, gy, magnitude);
+    std::vector<float> values(magnitude.begin<float>(), magnitude.end<float>());
+    auto percentile = values.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), percentile, values.end());
+    scale = std::clamp(static_cast<double>(*percentile) / kReferenceContrast, 0.05, 20.0);
+  }
   cv::Mat edges;
   // 3x3 Sobel filters and the L2 gradient magnitude M = sqrt(Sx^2 + Sy^2), as in 6.3.2.
-  cv::Canny(blurred, edges, options.canny_low, options.canny_high, 3, true);
+  cv::Canny(blurred, edges, scale * options.canny_low, scale * options.canny_high, 3, true);
   return std::vector<std::uint8_t>(edges.begin<std::uint8_t>(), edges.end<std::uint8_t>());
 }
 

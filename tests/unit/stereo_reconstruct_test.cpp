@@ -233,6 +233,34 @@ TEST(SoupMeshing, AFlatSoupGivesAFlatMeshCoveringIt) {
   EXPECT_THROW(mesh_soup(TriangleSoup{}, {}), InvalidInput);
 }
 
+TEST(Contours, AdaptiveThresholdsKeepTheContoursOfADimImage) {
+  // Blocks of random grey levels, and the same image at 15% contrast.
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<int> level(0, 255);
+  const int w = 240, h = 160, block = 20;
+  std::vector<int> levels((w / block) * (h / block));
+  for (int& l : levels) l = level(rng);
+  std::vector<std::uint8_t> bright(w * h), dim(w * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int l = levels[(y / block) * (w / block) + x / block];
+      bright[y * w + x] = static_cast<std::uint8_t>(l);
+      dim[y * w + x] = static_cast<std::uint8_t>(20 + 0.15 * l);
+    }
+  const auto edge_pixels = [&](const std::vector<std::uint8_t>& grey, bool adaptive) {
+    DepthMapOptions options;
+    options.canny_adaptive = adaptive;
+    const std::vector<std::uint8_t> edges = detect_contours(grey, w, h, options);
+    return std::count_if(edges.begin(), edges.end(), [](std::uint8_t e) { return e != 0; });
+  };
+  const auto bright_fixed = edge_pixels(bright, false), dim_fixed = edge_pixels(dim, false);
+  const auto bright_adaptive = edge_pixels(bright, true), dim_adaptive = edge_pixels(dim, true);
+  ASSERT_GT(bright_fixed, 1000);
+  EXPECT_LT(dim_fixed, bright_fixed / 2) << "fixed thresholds lose the weaker contours of a dim image";
+  EXPECT_GT(dim_adaptive, 0.8 * bright_adaptive) << "scaled thresholds keep them";
+  EXPECT_LT(dim_adaptive, 1.25 * bright_adaptive);
+}
+
 TEST(SoupMeshing, EveryPatchOfTheSoupIsMeshedNotOnlyWhereRandomSeedsFall) {
   // A 10 x 10 square of 7,200 triangles and four 1 x 1 squares of 32 each,
   // off to the side: random seeds (one soup triangle each) rarely fall on the
