@@ -28,8 +28,7 @@ class Recentering {
       scale_ = std::ldexp(1.0, -std::ilogb(diagonal));
   }
 
-  /// Local lengths per world length (1 unless the cloud is extremely small or large).
-  double scale() const { return scale_; }
+  /// A length measured in local coordinates, in world units.
   double length_to_world(double length) const { return length / scale_; }
 
   void to_local(Vec3& p) const { p = scale_ * (p - offset_); }

@@ -100,14 +100,14 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   report_progress(progress, "poisson", 0.0);
   auto surface = std::make_unique<PoissonSurface>(samples);
   if (!surface->solve()) throw NumericalFailure("Poisson reconstruction: the linear solver failed");
-  // Samples on an exact sphere (synthetic: 1,000 points of a Fibonacci sphere
-  // fail, 1,500 do not) make CGAL's Delaunay
-  // refinement of the Poisson domain degenerate, and the function comes out
-  // with no consistent sign. Detected by its gradient disagreeing with the
-  // normals at over a quarter of the samples; solved again on samples moved
-  // by 1e-4, then 1e-3, of the bounding radius (1e-5 is not enough for 1,000
-  // points on a sphere), keeping the most consistent function. Partly
-  // inconsistent normals also lower the agreement; jitter does not help them.
+  // Samples on an exact sphere (1,000 points of a Fibonacci sphere fail,
+  // 1,500 do not) make CGAL's Delaunay refinement of the Poisson domain
+  // degenerate, and the function comes out with no consistent sign. Detected
+  // by its gradient disagreeing with the normals at over a quarter of the
+  // samples; solved again on samples moved by 1e-4, then 1e-3, of the
+  // bounding radius (1e-5 is not enough), keeping the most consistent
+  // function. Partly inconsistent normals also lower the agreement; jitter
+  // does not help them.
   double agreement = normal_agreement(*surface);
   for (double jitter : {1e-4, 1e-3}) {
     if (agreement >= 0.75) break;
