@@ -31,24 +31,28 @@ std::vector<std::uint8_t> detect_contours(const std::vector<std::uint8_t>& grey,
     cv::GaussianBlur(image, blurred, cv::Size(0, 0), options.canny_sigma);
   else
     blurred = image;
+  // 3x3 Sobel derivatives and the L2 gradient magnitude M = sqrt(Sx^2 + Sy^2),
+  // as in 6.3.2; computed once, for the contrast below and for Canny.
+  cv::Mat dx, dy;
+  cv::Sobel(blurred, dx, CV_16S, 1, 0, 3, 1, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(blurred, dy, CV_16S, 0, 1, 3, 1, 0, cv::BORDER_REPLICATE);
   double scale = 1.0;
   if (options.canny_adaptive) {
     // The thresholds hold for an image whose 99th-percentile gradient
     // magnitude (its strong edges) is kReferenceContrast, as in the generated
     // scenes (95-130); others get them scaled in proportion.
     constexpr double kReferenceContrast = 100.0;
-    cv::Mat gx, gy, magnitude;
-    cv::Sobel(blurred, gx, CV_32F, 1, 0, 3);
-    cv::Sobel(blurred, gy, CV_32F, 0, 1, 3);
-    cv::magnitude(gx, gy, magnitude);
+    cv::Mat fx, fy, magnitude;
+    dx.convertTo(fx, CV_32F);
+    dy.convertTo(fy, CV_32F);
+    cv::magnitude(fx, fy, magnitude);
     std::vector<float> values(magnitude.begin<float>(), magnitude.end<float>());
     auto percentile = values.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(values.size() - 1));
     std::nth_element(values.begin(), percentile, values.end());
     scale = std::clamp(static_cast<double>(*percentile) / kReferenceContrast, 0.05, 20.0);
   }
   cv::Mat edges;
-  // 3x3 Sobel filters and the L2 gradient magnitude M = sqrt(Sx^2 + Sy^2), as in 6.3.2.
-  cv::Canny(blurred, edges, scale * options.canny_low, scale * options.canny_high, 3, true);
+  cv::Canny(dx, dy, edges, scale * options.canny_low, scale * options.canny_high, true);
   return std::vector<std::uint8_t>(edges.begin<std::uint8_t>(), edges.end<std::uint8_t>());
 }
 
