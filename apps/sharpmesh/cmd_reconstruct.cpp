@@ -53,6 +53,9 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_option("--trim", o->reconstruct.trim_distance,
                   "Remove facets farther than TRIM x d' + 2 avg from every input point, so open scans give open meshes (0: keep the closed Poisson surface)")
       ->capture_default_str();
+  sub->add_option("--poisson-spacing", o->reconstruct.poisson_spacing,
+                  "Solve Poisson on a grid simplification of the cloud with cells of F x d' (0: on every point)")
+      ->capture_default_str();
   sub->add_option("--normals", o->normals, "Normals when the input has none: auto (cvcm with features, else jet), cvcm, jet or pca")
       ->check(CLI::IsMember({"auto", "cvcm", "pca", "jet"}))
       ->capture_default_str();
@@ -129,7 +132,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"features", o->no_features ? "none" : o->features_file.empty() ? "extract" : o->features_file},
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
-          {"trim", options.trim_distance}, {"normals", o->normals}, {"normal_k", options.normals.k},
+          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",
@@ -141,10 +144,10 @@ Command add_reconstruct(CLI::App& app) {
           {"ball_radius", length_json(options.ball_radius * result.d_prime, diagonal)},
           {"estimated_facets", result.estimated_facets}}},
         {"counts",
-         {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points},
+         {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
-          {"trimmed_facets", result.trimmed_facets}, {"boundary_edges", result.boundary_edges}}},
+          {"restricted_to_data", result.restricted}, {"trimmed_facets", result.trimmed_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);

@@ -19,6 +19,8 @@ class ImplicitSurface {
   virtual double bounding_radius() const = 0;
   /// A point with a negative value (inside).
   virtual Vec3 inside_point() const = 0;
+  /// Number of samples the function was fitted to (0 when not applicable).
+  virtual std::size_t sample_count() const { return 0; }
 };
 
 /// Central-difference gradient of the function at p, with step h.
@@ -38,6 +40,15 @@ bool project_onto_surface(const ImplicitSurface& surface, const Vec3& p, double 
 /// (Poisson closing an open scan) is cut there. Beyond the thesis (8.2).
 std::unique_ptr<ImplicitSurface> restrict_to_points(std::unique_ptr<ImplicitSurface> surface, const std::vector<Vec3>& points,
                                                     double max_distance);
+
+/// Whether the zero level set reaches farther than `max_distance` from every
+/// point of `points` somewhere within `domain_radius` of the bounding centre:
+/// a sign change between two grid nodes (cells of about max_distance, at
+/// most 96 per side) that both lie that far from the data. When it does not,
+/// a restriction is not needed, and would only add an offset surface
+/// inside the solid.
+bool zero_set_leaves_points(const ImplicitSurface& surface, const std::vector<Vec3>& points, double max_distance,
+                            double domain_radius);
 
 /// Poisson surface reconstruction (Kazhdan et al. 2006) by CGAL's
 /// Poisson_reconstruction_function. Needs oriented normals.

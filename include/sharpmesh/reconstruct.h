@@ -42,6 +42,10 @@ struct ReconstructOptions {
   /// Open surfaces: remove facets farther than trim_distance x d' + 2 avg
   /// from every input point (0: keep Poisson's closed surface everywhere).
   double trim_distance = 1.0;
+  /// Poisson is solved on a grid simplification with cells of
+  /// poisson_spacing x d' (0: on every point). Beyond the thesis: the
+  /// function only has to be accurate at the scale of the mesh.
+  double poisson_spacing = 0;
   NormalSource normal_source = NormalSource::Automatic;
   NormalEstimationOptions normals;       ///< used when the input has no normals
   NormalOrientationOptions orientation;  ///< used when the input has no normals
@@ -60,10 +64,12 @@ struct ReconstructResult {
   std::size_t input_points = 0;
   std::size_t duplicate_points = 0;  ///< removed: same position as an earlier point
   std::size_t used_points = 0;       ///< after removing duplicated and unorientable points
+  std::size_t poisson_points = 0;    ///< samples the Poisson equation was solved on
   bool normals_estimated = false;
   std::string normal_source;         ///< "input", "cvcm", "jet" or "pca"
   FeatureResult features;            ///< when extracted (graph only when given)
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
+  bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)
   std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
   std::vector<StageTiming> stages;

@@ -32,6 +32,7 @@ class PoissonSurface final : public ImplicitSurface {
   Vec3 bounding_center() const override { return detail::from_cgal(function_.bounding_sphere().center()); }
   double bounding_radius() const override { return std::sqrt(function_.bounding_sphere().squared_radius()); }
   Vec3 inside_point() const override { return detail::from_cgal(function_.get_inner_point()); }
+  std::size_t sample_count() const override { return samples_.size(); }
 
  private:
   std::vector<PointWithNormal> samples_;

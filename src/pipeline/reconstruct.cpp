@@ -24,6 +24,8 @@ void ReconstructOptions::check(std::size_t n) const {
   if (feature_mode == FeatureMode::Extract) features.check();
   if (!(trim_distance >= 0) || !std::isfinite(trim_distance))
     throw InvalidArgument("trim distance must be >= 0 (got " + format_number(trim_distance) + ")");
+  if (!(poisson_spacing >= 0 && poisson_spacing <= 4))
+    throw InvalidArgument("Poisson sample spacing is a fraction of d' in [0, 4] (got " + format_number(poisson_spacing) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
     throw InvalidArgument("spacing k = " + format_number(spacing_k) + " needs more than k points, the set has " + format_number(n));
 }
@@ -115,12 +117,29 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
   std::unique_ptr<ImplicitSurface> surface;
   {
     StageTimer timer(result.stages, "poisson");
-    surface = poisson_surface(oriented, PoissonOptions{}, progress);
+    // Optional: solve on a grid simplification, 4x faster on fandisk 200k at
+    // cells of d'/2, for about 30% more mean error (docs/accuracy_vs_size.md).
+    // Keeping every edge point as well made blade's function inconsistent.
+    PointSet samples;
+    if (options.poisson_spacing > 0) {
+      samples = PointSet{oriented.points, oriented.normals, {}};
+      grid_simplify(samples, options.poisson_spacing * result.d_prime);
+    }
+    surface = poisson_surface(options.poisson_spacing > 0 ? samples : oriented, PoissonOptions{}, progress);
+    result.poisson_points = surface->sample_count();
   }
   const double trim_distance = options.trim_distance * result.d_prime + 2 * result.average_spacing;
   // Open inputs: cut the implicit function at twice the trim distance, so
-  // Poisson's closing sheet is never refined; the trim removes the cut.
-  if (options.trim_distance > 0) surface = restrict_to_points(std::move(surface), input.points, 2 * trim_distance);
+  // Poisson's closing sheet is never refined; the trim removes the cut. Only
+  // where the zero set leaves the data: on a closed surface the cut would
+  // add a useless offset surface inside the solid (37% more facets to refine
+  // on fandisk).
+  if (options.trim_distance > 0) {
+    StageTimer timer(result.stages, "restriction");
+    const double mesher_domain = 1.5 * surface->bounding_radius();  // as in mesh_implicit_surface
+    result.restricted = zero_set_leaves_points(*surface, input.points, 2 * trim_distance, mesher_domain);
+    if (result.restricted) surface = restrict_to_points(std::move(surface), input.points, 2 * trim_distance);
+  }
   {
     StageTimer timer(result.stages, "refinement");
     ImplicitMeshingOptions meshing;

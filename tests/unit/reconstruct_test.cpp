@@ -42,6 +42,10 @@ TEST(Reconstruct, SphereGivesAClosedManifoldMeshCloseToTheSphere) {
   const ReconstructResult r = reconstruct(sample(sphere, 20000), options);
   EXPECT_TRUE(r.normals_estimated);
   EXPECT_GT(r.mesh.faces.size(), 500u);
+  // Closed: the zero set stays near the data, so the function is not cut
+  // (a cut would add an offset sphere inside, meshed and then trimmed).
+  EXPECT_FALSE(r.restricted);
+  EXPECT_EQ(r.trimmed_facets, 0u);
   expect_valid_and_close(r.mesh, sphere, 0.005);
   // The facet estimate that guards --max-facets is within a factor 2 of the truth.
   EXPECT_GT(r.estimated_facets, 0.5 * r.mesh.faces.size());
@@ -145,6 +149,7 @@ TEST(FeaturePreservingReconstruction, OpenSheetIsTrimmedToTheData) {
   ReconstructOptions options;
   options.feature_mode = FeatureMode::None;
   const ReconstructResult r = reconstruct(sheet, options);
+  EXPECT_TRUE(r.restricted);  // Poisson's closing sheet leaves the data
   EXPECT_GT(r.trimmed_facets, 0u);
   EXPECT_GT(r.boundary_edges, 0u);
   for (const Vec3& v : r.mesh.vertices) EXPECT_LT(std::abs(v[2] - 0.05 * std::sin(3.0 * v[0])), 0.03);
