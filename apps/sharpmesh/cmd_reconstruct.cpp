@@ -144,7 +144,7 @@ Command add_reconstruct(CLI::App& app) {
           {"ball_radius", length_json(options.ball_radius * result.d_prime, diagonal)},
           {"estimated_facets", result.estimated_facets}}},
         {"counts",
-         {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points},
+         {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
           {"restricted_to_data", result.restricted}, {"trimmed_facets", result.trimmed_facets}, {"boundary_edges", result.boundary_edges}}},

@@ -65,8 +65,9 @@ struct ReconstructResult {
   std::size_t duplicate_points = 0;  ///< removed: same position as an earlier point
   std::size_t used_points = 0;       ///< after removing duplicated and unorientable points
   std::size_t poisson_points = 0;    ///< samples the Poisson equation was solved on
+  double normal_agreement = 0;       ///< of the Poisson function with its normals (PoissonDiagnostics)
   bool normals_estimated = false;
-  std::string normal_source;         ///< "input", "cvcm", "jet" or "pca"
+  std::string normal_source;         ///< "input", "cvcm", "jet", "pca" or "jet (cvcm fallback)"
   FeatureResult features;            ///< when extracted (graph only when given)
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)

@@ -13,6 +13,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["duplicate_points"] = r.duplicate_points;
   counts["points_used"] = r.used_points;
   counts["poisson_points"] = r.poisson_points;
+  counts["normal_agreement"] = r.normal_agreement;
   counts["normals_estimated"] = r.normals_estimated;
   counts["normal_source"] = r.normal_source;
   counts["vertices"] = r.mesh.vertices.size();

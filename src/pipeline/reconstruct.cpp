@@ -91,32 +91,26 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
     result.features.graph.polylines = options.given_features;
   }
 
-  PointSet oriented = input;
-  if (!input.has_normals() || options.recompute_normals) {
-    StageTimer timer(result.stages, "normals");
-    const bool cvcm = options.normal_source == NormalSource::Cvcm ||
-                      (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
-    if (cvcm) {
-      if (options.feature_mode != FeatureMode::Extract)
-        throw InvalidArgument("CVCM normals need feature extraction (they come from its covariance measure)");
+  const bool cvcm = options.normal_source == NormalSource::Cvcm ||
+                    (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
+  const bool needs_normals = !input.has_normals() || options.recompute_normals;
+  if (cvcm && needs_normals && options.feature_mode != FeatureMode::Extract)
+    throw InvalidArgument("CVCM normals need feature extraction (they come from its covariance measure)");
+  auto oriented_normals = [&](bool from_cvcm, const char* stage) {
+    StageTimer timer(result.stages, stage);
+    PointSet oriented = input;
+    if (from_cvcm) {
       oriented.normals.resize(input.size());
       for (std::size_t i = 0; i < input.size(); ++i) oriented.normals[i] = result.features.points[i].normal;
-      result.normal_source = "cvcm";
     } else {
       estimate_normals(oriented, options.normals, progress);
-      result.normal_source = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
     }
     // Tangent-aware MST (orientation.cpp): no flips across thin walls.
     orient_normals_tangent_mst(oriented, options.orientation.k, progress);
-    result.normals_estimated = true;
-  } else {
-    result.normal_source = "input";
-  }
-  result.used_points = oriented.size();
-
-  std::unique_ptr<ImplicitSurface> surface;
-  {
-    StageTimer timer(result.stages, "poisson");
+    return oriented;
+  };
+  auto solve = [&](const PointSet& oriented, PoissonDiagnostics& diagnostics, const char* stage) {
+    StageTimer timer(result.stages, stage);
     // Optional: solve on a grid simplification, 4x faster on fandisk 200k at
     // cells of d'/2, for about 30% more mean error (docs/accuracy_vs_size.md).
     // Keeping every edge point as well made blade's function inconsistent.
@@ -125,9 +119,40 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
       samples = PointSet{oriented.points, oriented.normals, {}};
       grid_simplify(samples, options.poisson_spacing * result.d_prime);
     }
-    surface = poisson_surface(options.poisson_spacing > 0 ? samples : oriented, PoissonOptions{}, progress);
-    result.poisson_points = surface->sample_count();
+    return poisson_surface(options.poisson_spacing > 0 ? samples : oriented, PoissonOptions{}, progress, &diagnostics);
+  };
+  const std::string estimated_name = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
+  result.normal_source = !needs_normals ? "input" : cvcm ? "cvcm" : estimated_name;
+  result.normals_estimated = needs_normals;
+  result.used_points = input.size();
+
+  std::unique_ptr<ImplicitSurface> surface;
+  PoissonDiagnostics diagnostics;
+  // With automatic normals, CVCM normals whose Poisson function disagrees
+  // with them (needle-like spikes, where the covariance's main axis runs
+  // along the spike: CGAL's star.off) are replaced by jet normals; the
+  // function that agrees better with its own normals is kept.
+  const bool may_fall_back = needs_normals && cvcm && options.normal_source == NormalSource::Automatic;
+  try {
+    surface = solve(needs_normals ? oriented_normals(cvcm, "normals") : input, diagnostics, "poisson");
+  } catch (const NumericalFailure&) {
+    if (!may_fall_back) throw;
   }
+  if (may_fall_back && diagnostics.normal_agreement < 0.9) {
+    PoissonDiagnostics fallback;
+    try {
+      auto retry = solve(oriented_normals(false, "normals (fallback)"), fallback, "poisson (fallback)");
+      if (!surface || fallback.normal_agreement > diagnostics.normal_agreement) {
+        surface = std::move(retry);
+        diagnostics = fallback;
+        result.normal_source = estimated_name + " (cvcm fallback)";
+      }
+    } catch (const NumericalFailure&) {
+      if (!surface) throw;
+    }
+  }
+  result.poisson_points = surface->sample_count();
+  result.normal_agreement = diagnostics.normal_agreement;
   const double trim_distance = options.trim_distance * result.d_prime + 2 * result.average_spacing;
   // Open inputs: cut the implicit function at twice the trim distance, so
   // Poisson's closing sheet is never refined; the trim removes the cut. Only
