@@ -43,6 +43,7 @@ bench: data
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 	@bench/run $(BUILD_DIR)
 	@bench/accuracy_vs_size $(BUILD_DIR)
+	@bench/fig714 $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)
 	@bench/stereo_study $(BUILD_DIR)
 
