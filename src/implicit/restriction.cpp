@@ -1,5 +1,6 @@
 // An implicit surface cut away from the data (open scans, thin open models).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "pointset/knn.h"
@@ -12,7 +13,7 @@ namespace {
 class RestrictedSurface final : public ImplicitSurface {
  public:
   RestrictedSurface(std::unique_ptr<ImplicitSurface> inner, const std::vector<Vec3>& points, double max_distance)
-      : inner_(std::move(inner)), index_(points), max_distance_(max_distance) {}
+      : inner_(std::move(inner)), index_(points), max_distance_(max_distance), id_(next_id()) {}
 
   double value(const Vec3& p) const override { return near_data(p) ? inner_->value(p) : 1.0; }
   Vec3 bounding_center() const override { return inner_->bounding_center(); }
@@ -27,27 +28,33 @@ class RestrictedSurface final : public ImplicitSurface {
   /// query q decides whenever |p - q| < |d(q) - max_distance|.
   bool near_data(const Vec3& p) const {
     struct Last {
-      const RestrictedSurface* owner = nullptr;
+      std::uint64_t owner = 0;  // an id, not the address: a new surface may reuse a freed one's
       Vec3 point{0, 0, 0};
       double distance = 0;
     };
     thread_local Last last;
     thread_local std::vector<std::uint32_t> ids;
     thread_local std::vector<double> d2;
-    if (last.owner == this) {
+    if (last.owner == id_) {
       const double moved = distance(p, last.point);
       if (last.distance + moved <= max_distance_) return true;
       if (last.distance - moved > max_distance_) return false;
     }
     index_.nearest(p, 1, ids, d2);
     if (d2.empty()) return false;
-    last = {this, p, std::sqrt(d2[0])};
+    last = {id_, p, std::sqrt(d2[0])};
     return last.distance <= max_distance_;
+  }
+
+  static std::uint64_t next_id() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
   }
 
   std::unique_ptr<ImplicitSurface> inner_;
   detail::KnnIndex index_;
   double max_distance_;
+  std::uint64_t id_;
 };
 
 }  // namespace

@@ -112,7 +112,7 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
   auto solve = [&](const PointSet& oriented, PoissonDiagnostics& diagnostics, const char* stage) {
     StageTimer timer(result.stages, stage);
     // Optional: solve on a grid simplification, 4x faster on fandisk 200k at
-    // cells of d'/2, for about 30% more mean error (docs/accuracy_vs_size.md).
+    // cells of d'/2, for about 30% more mean error (measured in the README).
     // Keeping every edge point as well made blade's function inconsistent.
     PointSet samples;
     if (options.poisson_spacing > 0) {
