@@ -9,7 +9,7 @@ out, docs = sys.argv[1], sys.argv[2]
 rows = []
 for path in sorted(glob.glob(os.path.join(out, "*.eval.json"))):
     name = os.path.basename(path)[: -len(".eval.json")]
-    model, method, param = re.match(r"(.+?)-(ours|pif|open3d)-(.+)", name).groups()
+    model, method, param = re.match(r"(.+?)-(ours|fast|pif|open3d)-(.+)", name).groups()
     e = json.load(open(path))["evaluation"]
     report = json.load(open(os.path.join(out, name + ".json")))
     prot = report.get("protection", {})
@@ -22,13 +22,13 @@ models = sorted({r["model"] for r in rows})
 lines = ["# Accuracy versus size (thesis Fig. 7.13, 7.14)", "",
          "Produced by `bench/accuracy_vs_size`. Distances in U = 1/200 of the reference's bounding-box diagonal; "
          "`ours` = the Chapter 7 pipeline (features, CVCM normals, Poisson, protected refinement), "
-         "`pif` = `--no-features`, `open3d` = Open3D 0.16 screened Poisson (depth = parameter) + marching cubes, "
+         "`fast` = ours with `--poisson-spacing 0.5` (Poisson on a grid simplification, cells d'/2), `pif` = `--no-features`, `open3d` = Open3D 0.16 screened Poisson (depth = parameter) + marching cubes, "
          "normals by PCA (k = 18) oriented by CGAL's MST (`sharpmesh clean --normals pca --orient`; Open3D's own tangent-plane orientation did not finish in 20 minutes on 200k points), cropped to the cloud's bounding box.", ""]
 fig, axes = plt.subplots(2, len(models), figsize=(5 * len(models), 8), squeeze=False)
 for col, model in enumerate(models):
     lines += [f"## {model}", "", "| method | delta/depth | facets | Hausdorff (U) | mean (U) | sharp-edge mean (U) | sharp-edge max (U) | closed | manifold | self-int. | feature segments as edges | seconds |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for method, style in (("ours", "o-"), ("pif", "s--"), ("open3d", "^:")):
+    for method, style in (("ours", "o-"), ("fast", "D"), ("pif", "s--"), ("open3d", "^:")):
         rs = sorted([r for r in rows if r["model"] == model and r["method"] == method], key=lambda r: r["facets"])
         for r in rs:
             rep = f"{r['represented']:.3f}" if r["represented"] != "" else ""

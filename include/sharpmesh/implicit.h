@@ -34,21 +34,21 @@ Vec3 implicit_gradient(const ImplicitSurface& surface, const Vec3& p, double h);
 bool project_onto_surface(const ImplicitSurface& surface, const Vec3& p, double max_step, double max_distance, double h,
                           Vec3& projection);
 
-/// The surface restricted to the neighbourhood of the data: farther than
-/// `max_distance` from every point of `points` the function is positive
-/// (outside), so an implicit function that invents surface away from the data
-/// (Poisson closing an open scan) is cut there. Beyond the thesis (8.2).
-std::unique_ptr<ImplicitSurface> restrict_to_points(std::unique_ptr<ImplicitSurface> surface, const std::vector<Vec3>& points,
-                                                    double max_distance);
-
-/// Whether the zero level set reaches farther than `max_distance` from every
-/// point of `points` somewhere within `domain_radius` of the bounding centre:
-/// a sign change between two grid nodes (cells of about max_distance, at
-/// most 96 per side) that both lie that far from the data. When it does not,
-/// a restriction is not needed, and would only add an offset surface
-/// inside the solid.
-bool zero_set_leaves_points(const ImplicitSurface& surface, const std::vector<Vec3>& points, double max_distance,
-                            double domain_radius);
+/// The surface restricted to the neighbourhood of the data, where it needs
+/// it: when its zero set reaches farther than `max_distance` from every point
+/// of `points` within `domain_radius` of the bounding centre (a sign change
+/// between two grid nodes, cells of about max_distance and at most 96 per
+/// side, both that far from the data: Poisson closing an open scan), the
+/// function is made positive (outside) farther than max_distance from the
+/// data, so that surface is cut. Otherwise the surface is returned unchanged:
+/// on a closed surface the cut would only add an offset surface inside the
+/// solid. Beyond the thesis (8.2).
+struct Restriction {
+  std::unique_ptr<ImplicitSurface> surface;
+  bool applied = false;
+};
+Restriction restrict_to_points(std::unique_ptr<ImplicitSurface> surface, const std::vector<Vec3>& points, double max_distance,
+                               double domain_radius);
 
 /// Poisson surface reconstruction (Kazhdan et al. 2006) by CGAL's
 /// Poisson_reconstruction_function. Needs oriented normals.
@@ -60,7 +60,6 @@ struct PoissonDiagnostics {
   /// Share of (up to 500) samples where the function grows along the normal:
   /// 1.000 on CGAL's CAD models with good normals, 0.75 with 25% flipped.
   double normal_agreement = 0;
-  int solves = 0;  ///< 1, or more when jittered samples were tried
 };
 std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& oriented_points, const PoissonOptions& options = {},
                                                  const Progress& progress = {}, PoissonDiagnostics* diagnostics = nullptr);

@@ -81,6 +81,10 @@ struct ImplicitMeshingResult {
 /// protected by weighted points (7.3.2). The result is the boundary of the
 /// meshed volume: closed and, with the manifold option of CGAL's Mesh_3,
 /// manifold.
+/// Radius, around the surface's bounding centre, of the ball the refinement
+/// meshes in: the surface lies well inside its bounding sphere.
+double meshing_domain_radius(const ImplicitSurface& surface);
+
 ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
                                             const Progress& progress = {});
 

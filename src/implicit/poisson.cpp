@@ -111,16 +111,14 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   // function. Partly inconsistent normals also lower the agreement; jitter
   // does not help them.
   double agreement = normal_agreement(*surface);
-  int solves = 1;
   for (double jitter : {1e-4, 1e-3}) {
     if (agreement >= 0.75) break;
-    ++solves;
     auto retry = std::make_unique<PoissonSurface>(jittered(samples, jitter * surface->bounding_radius()));
     if (!retry->solve()) continue;
     const double retry_agreement = normal_agreement(*retry);
     if (retry_agreement > agreement) std::tie(surface, agreement) = std::make_pair(std::move(retry), retry_agreement);
   }
-  if (diagnostics) *diagnostics = {agreement, solves};
+  if (diagnostics) diagnostics->normal_agreement = agreement;
   if (agreement < 0.5)
     throw NumericalFailure("Poisson reconstruction: the implicit function disagrees with most normals (inconsistent normals, or a degenerate point set)");
   report_progress(progress, "poisson", 1.0);

@@ -12,8 +12,8 @@ namespace {
 
 class RestrictedSurface final : public ImplicitSurface {
  public:
-  RestrictedSurface(std::unique_ptr<ImplicitSurface> inner, const std::vector<Vec3>& points, double max_distance)
-      : inner_(std::move(inner)), index_(points), max_distance_(max_distance), id_(next_id()) {}
+  RestrictedSurface(std::unique_ptr<ImplicitSurface> inner, std::unique_ptr<const detail::KnnIndex> index, double max_distance)
+      : inner_(std::move(inner)), index_(std::move(index)), max_distance_(max_distance), id_(next_id()) {}
 
   double value(const Vec3& p) const override { return near_data(p) ? inner_->value(p) : 1.0; }
   Vec3 bounding_center() const override { return inner_->bounding_center(); }
@@ -40,7 +40,7 @@ class RestrictedSurface final : public ImplicitSurface {
       if (last.distance + moved <= max_distance_) return true;
       if (last.distance - moved > max_distance_) return false;
     }
-    index_.nearest(p, 1, ids, d2);
+    index_->nearest(p, 1, ids, d2);
     if (d2.empty()) return false;
     last = {id_, p, std::sqrt(d2[0])};
     return last.distance <= max_distance_;
@@ -52,26 +52,17 @@ class RestrictedSurface final : public ImplicitSurface {
   }
 
   std::unique_ptr<ImplicitSurface> inner_;
-  detail::KnnIndex index_;
+  std::unique_ptr<const detail::KnnIndex> index_;
   double max_distance_;
   std::uint64_t id_;
 };
 
-}  // namespace
-
-std::unique_ptr<ImplicitSurface> restrict_to_points(std::unique_ptr<ImplicitSurface> surface, const std::vector<Vec3>& points,
-                                                    double max_distance) {
-  if (!(max_distance > 0)) throw InvalidArgument("restriction distance must be positive");
-  if (points.empty()) throw InvalidInput("cannot restrict a surface to an empty point set");
-  return std::make_unique<RestrictedSurface>(std::move(surface), points, max_distance);
-}
-
-bool zero_set_leaves_points(const ImplicitSurface& surface, const std::vector<Vec3>& points, double max_distance,
+/// Whether the zero set has a sign change between two grid nodes that both
+/// lie farther than max_distance from the data.
+bool zero_set_leaves_points(const ImplicitSurface& surface, const detail::KnnIndex& index, double max_distance,
                             double domain_radius) {
-  if (!(max_distance > 0)) throw InvalidArgument("restriction distance must be positive");
-  if (points.empty()) throw InvalidInput("cannot compare a surface with an empty point set");
-  // Grid over the cube around the meshing domain, cells no smaller than
-  // max_distance (and at most 96 per side).
+  // Grid over the cube around the meshing domain, cells of about
+  // max_distance (8 to 96 per side).
   const int n = std::clamp(static_cast<int>(std::ceil(2 * domain_radius / max_distance)), 8, 96);
   const double step = 2 * domain_radius / n;
   const Vec3 origin = surface.bounding_center() - Vec3{domain_radius, domain_radius, domain_radius};
@@ -81,7 +72,6 @@ bool zero_set_leaves_points(const ImplicitSurface& surface, const std::vector<Ve
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j <= n; ++j)
       for (int k = 0; k <= n; ++k) sign[at(i, j, k)] = surface.value(node(i, j, k)) < 0 ? -1 : 1;
-  const detail::KnnIndex index(points);
   std::vector<std::uint32_t> ids;
   std::vector<double> d2;
   auto far = [&](const Vec3& p) {
@@ -102,6 +92,17 @@ bool zero_set_leaves_points(const ImplicitSurface& surface, const std::vector<Ve
           return true;
       }
   return false;
+}
+
+}  // namespace
+
+Restriction restrict_to_points(std::unique_ptr<ImplicitSurface> surface, const std::vector<Vec3>& points, double max_distance,
+                               double domain_radius) {
+  if (!(max_distance > 0)) throw InvalidArgument("restriction distance must be positive");
+  if (points.empty()) throw InvalidInput("cannot restrict a surface to an empty point set");
+  auto index = std::make_unique<const detail::KnnIndex>(points);
+  if (!zero_set_leaves_points(*surface, *index, max_distance, domain_radius)) return {std::move(surface), false};
+  return {std::make_unique<RestrictedSurface>(std::move(surface), std::move(index), max_distance), true};
 }
 
 }  // namespace sharpmesh

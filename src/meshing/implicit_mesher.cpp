@@ -304,6 +304,8 @@ void ImplicitMeshingOptions::check() const {
   }
 }
 
+double meshing_domain_radius(const ImplicitSurface& surface) { return 1.5 * surface.bounding_radius(); }
+
 double estimate_facet_count(double area, const RefinementCriteria& criteria) {
   // Equilateral facets of edge l/2 .. l; take the geometric middle.
   const double edge = criteria.edge_length / std::sqrt(2.0);
@@ -315,8 +317,7 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   options.check();
   const double radius = surface.bounding_radius();
   if (!(radius > 0)) throw InvalidInput("implicit surface has an empty bounding sphere");
-  // The surface lies well inside the function's bounding sphere; mesh within 1.5x of it.
-  const double domain_radius = 1.5 * radius;
+  const double domain_radius = meshing_domain_radius(surface);
   const double sphere_area = 4 * M_PI * radius * radius;
   if (options.max_facets > 0 && estimate_facet_count(sphere_area, options.criteria) > 1e3 * options.max_facets)
     throw InvalidArgument("the meshing criteria are far too fine for the surface size (edge length " +

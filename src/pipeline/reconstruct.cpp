@@ -154,16 +154,15 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
   result.poisson_points = surface->sample_count();
   result.normal_agreement = diagnostics.normal_agreement;
   const double trim_distance = options.trim_distance * result.d_prime + 2 * result.average_spacing;
-  // Open inputs: cut the implicit function at twice the trim distance, so
-  // Poisson's closing sheet is never refined; the trim removes the cut. Only
-  // where the zero set leaves the data: on a closed surface the cut would
-  // add a useless offset surface inside the solid (37% more facets to refine
-  // on fandisk).
+  // Open inputs: cut the implicit function at twice the trim distance where
+  // its zero set leaves the data, so Poisson's closing sheet is never
+  // refined; the trim removes the cut.
   if (options.trim_distance > 0) {
     StageTimer timer(result.stages, "restriction");
-    const double mesher_domain = 1.5 * surface->bounding_radius();  // as in mesh_implicit_surface
-    result.restricted = zero_set_leaves_points(*surface, input.points, 2 * trim_distance, mesher_domain);
-    if (result.restricted) surface = restrict_to_points(std::move(surface), input.points, 2 * trim_distance);
+    const double domain_radius = meshing_domain_radius(*surface);
+    Restriction restriction = restrict_to_points(std::move(surface), input.points, 2 * trim_distance, domain_radius);
+    surface = std::move(restriction.surface);
+    result.restricted = restriction.applied;
   }
   {
     StageTimer timer(result.stages, "refinement");
