@@ -30,7 +30,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
-    bool no_features = false, fixed_balls = false, ascii = false;
+    bool no_features = false, fixed_balls = false, no_flattening = false, ascii = false;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
@@ -56,6 +56,11 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_option("--poisson-spacing", o->reconstruct.poisson_spacing,
                   "Solve Poisson on a grid simplification of the cloud with cells of F x d' (0: on every point)")
       ->capture_default_str();
+  sub->add_option("--seed-spacing", o->reconstruct.data_seed_spacing,
+                  "Before refinement, project one input point per cell of F x d' onto the implicit surface as a mesh vertex, so parts thinner than the facets are not stepped over (0: none)")
+      ->capture_default_str();
+  sub->add_flag("--no-flattening", o->no_flattening,
+                "Keep the facets along protected edges on the Poisson surface (the thesis) instead of moving their third vertices onto the data's face planes");
   sub->add_option("--normals", o->normals, "Normals when the input has none: auto (cvcm with features, else jet), cvcm, jet or pca")
       ->check(CLI::IsMember({"auto", "cvcm", "pca", "jet"}))
       ->capture_default_str();
@@ -75,6 +80,7 @@ Command add_reconstruct(CLI::App& app) {
     ReconstructOptions& options = o->reconstruct;
     options.feature_mode = o->no_features ? FeatureMode::None : o->features_file.empty() ? FeatureMode::Extract : FeatureMode::Given;
     options.adapt_balls_to_gap = !o->fixed_balls;
+    options.flatten_features = !o->no_flattening;
     if (o->normals == "auto") {
       options.normal_source = NormalSource::Automatic;
     } else if (o->normals == "cvcm") {
@@ -110,6 +116,7 @@ Command add_reconstruct(CLI::App& app) {
                       " facets, " + std::to_string(result.mesh.vertices.size()) + " vertices -> " + o->output);
       if (result.trimmed_facets > 0)
         printer.message("  open surface: " + std::to_string(result.trimmed_facets) + " facets far from the data removed, " +
+                        std::to_string(result.clipped_facets) + " cut along the data's edge, " +
                         std::to_string(result.boundary_edges) + " boundary edges");
       if (options.feature_mode != FeatureMode::None) {
         char line[200];
@@ -132,7 +139,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"features", o->no_features ? "none" : o->features_file.empty() ? "extract" : o->features_file},
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
-          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"normals", o->normals}, {"normal_k", options.normals.k},
+          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",
@@ -147,7 +154,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
-          {"restricted_to_data", result.restricted}, {"trimmed_facets", result.trimmed_facets}, {"boundary_edges", result.boundary_edges}}},
+          {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);

@@ -58,6 +58,17 @@ struct ImplicitMeshingOptions {
   /// past 8x this many facets: the implicit surface is then far larger than
   /// the data (inconsistent normals, an open or thin surface).
   double expected_facets = 0;
+  /// Beyond the thesis: points near the surface (e.g. the input points
+  /// thinned to one per `seed_spacing`), each projected onto the surface and
+  /// inserted before refinement where no vertex lies within seed_spacing / 2,
+  /// so every part of the data starts with a vertex. Without them a coarse
+  /// refinement steps over parts thinner than its facets (a thin wall whose
+  /// two sides one Voronoi edge crosses shows no sign change).
+  std::vector<Vec3> data_seeds;
+  double seed_spacing = 0;  ///< data units; 0: the maximum edge length
+  /// One spacing per data seed (empty: seed_spacing for all); seeds are
+  /// inserted densest first.
+  std::vector<double> data_seed_spacings;
   std::uint32_t seed = 0;
   void check() const;
 };
@@ -72,6 +83,7 @@ struct ImplicitMeshingResult {
   std::size_t represented_segments = 0;  ///< of those, edges of the output mesh
   double max_gap = 0;                    ///< largest polyline-to-surface distance measured at a ball
   std::vector<UncoveredGap> uncovered;
+  std::size_t data_seeds = 0;         ///< data seeds inserted before refinement
   std::size_t refinement_steps = 0;   ///< Mesher_3 steps
   bool refinement_stalled = false;    ///< stopped after many steps without a new vertex
 };
@@ -113,6 +125,33 @@ struct HoleFillingStats {
 /// Fills the holes of `mesh` (any orientation, non-manifold vertices
 /// allowed) whose perimeter is at most options.max_perimeter.
 HoleFillingStats fill_holes(SurfaceMesh& mesh, const HoleFillingOptions& options, const Progress& progress = {});
+
+/// Flattening of the facets along protected edges (beyond the thesis).
+struct FlatteningOptions {
+  double radius = 0;           ///< data units: input points within this of a vertex fit its face plane
+  double max_move = 0;         ///< data units: vertices farther than this from the plane stay
+  double max_residual = 0;     ///< data units: planes whose RMS residual is above this are not used
+  double max_angle_deg = 20;   ///< points whose normal is farther than this from the mesh's are on another face
+};
+
+/// Moves each vertex that shares a facet with a feature vertex (a vertex of
+/// `feature_edges`, which are polylines through mesh vertices) onto the
+/// plane fitted to the input points near it whose unoriented normals agree
+/// with the mesh's vertex normal: the face it lies on. The Poisson surface
+/// is rounded next to sharp edges, so without this these facets lean.
+/// Returns the number of vertices moved.
+std::size_t flatten_next_to_features(SurfaceMesh& mesh, const std::vector<Polyline>& feature_edges,
+                                     const std::vector<Vec3>& points, const std::vector<Vec3>& normals,
+                                     const FlatteningOptions& options);
+
+/// Open surfaces (beyond the thesis): cuts the facets between the boundary
+/// and the data (those with a vertex beyond the clip distance, connected to
+/// the boundary through such facets) along the level set where the distance
+/// to the nearest point of `points` equals the clip distance:
+/// max(min_distance, 2 x the median vertex-to-data distance, which grows
+/// with noise). Closed meshes are unchanged. Returns the number of facets
+/// cut or removed.
+std::size_t clip_boundary_to_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double min_distance);
 
 /// Number of mesh edges with exactly one incident facet.
 std::size_t count_boundary_edges(const SurfaceMesh& mesh);

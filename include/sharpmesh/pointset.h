@@ -50,6 +50,13 @@ std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOut
 /// scans repeat them; they make k-neighbourhoods degenerate). Returns the count.
 std::size_t remove_duplicate_points(PointSet& points);
 
+/// Local thickness at each point (beyond the thesis): the distance to the
+/// nearest point that faces it across the solid or across a gap (normals
+/// parallel, either orientation, and lying within 30 degrees of the
+/// normal's line), looked for between min_thickness and max_thickness;
+/// infinity where there is none. Needs one (unoriented) normal per point.
+std::vector<double> local_thickness(const PointSet& points, double min_thickness, double max_thickness);
+
 /// Keeps one point per cell of a regular grid of the given cell size (App. A.5).
 std::size_t grid_simplify(PointSet& points, double cell_size);
 

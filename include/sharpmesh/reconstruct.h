@@ -46,6 +46,15 @@ struct ReconstructOptions {
   /// poisson_spacing x d' (0: on every point). Beyond the thesis: the
   /// function only has to be accurate at the scale of the mesh.
   double poisson_spacing = 0;
+  /// Before refinement, one input point per cell of data_seed_spacing x d'
+  /// is projected onto the implicit surface and inserted, and more where the
+  /// solid or a gap is thinner than half that (0: none). Beyond the thesis:
+  /// parts thinner than the facets (thin walls, narrow slots) are not
+  /// stepped over by the refinement.
+  double data_seed_spacing = 2.0;
+  /// Beyond the thesis: the vertices that share a facet with a protected
+  /// edge are moved onto the plane of the data's face (flatten_next_to_features).
+  bool flatten_features = true;
   NormalSource normal_source = NormalSource::Automatic;
   NormalEstimationOptions normals;       ///< used when the input has no normals
   NormalOrientationOptions orientation;  ///< used when the input has no normals
@@ -72,6 +81,9 @@ struct ReconstructResult {
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)
   std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
+  std::size_t thin_points = 0;         ///< input points where the solid or a gap is thinner than the seed spacing / 2
+  std::size_t flattened_vertices = 0;  ///< moved onto the face planes next to protected edges
+  std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
   std::vector<StageTiming> stages;
 };

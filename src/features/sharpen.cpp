@@ -13,29 +13,11 @@
 
 #include <cmath>
 
+#include "core/plane_fit.h"
 #include "features/feature_graph_builder.h"
 
 namespace sharpmesh::detail {
 namespace {
-
-struct Plane {
-  Eigen::Vector3d normal, point;
-};
-
-// Least-squares plane; `rms` is the RMS distance of the points to it.
-bool fit_plane(const std::vector<Eigen::Vector3d>& pts, Plane& plane, double& rms) {
-  if (pts.size() < 6) return false;
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) c += p;
-  c /= static_cast<double>(pts.size());
-  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) m += (p - c) * (p - c).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(m);
-  plane = {solver.eigenvectors().col(0), c};
-  rms = std::sqrt(std::max(0.0, solver.eigenvalues()(0)) / static_cast<double>(pts.size()));
-  return true;
-}
 
 Eigen::Vector3d eig(const Vec3& v) { return {v[0], v[1], v[2]}; }
 

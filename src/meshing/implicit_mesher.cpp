@@ -145,6 +145,57 @@ void insert_surface_seeds(C3t3& c3t3, const Domain& domain) {
   }
 }
 
+/// Data seeds (ImplicitMeshingOptions::data_seeds): each point projected
+/// onto the surface, then placed exactly on CGAL's zero set by the domain's
+/// own intersection along the gradient (which also gives its surface index),
+/// and inserted unless a vertex lies within spacing / 2 or a protecting ball
+/// lies within its diameter. Returns the number inserted.
+std::size_t insert_data_seeds(C3t3& c3t3, const Domain& domain, const ImplicitSurface& surface,
+                              const std::vector<Vec3>& points, const std::vector<double>& spacings, const Progress& progress) {
+  Tr& tr = c3t3.triangulation();
+  std::vector<std::pair<detail::Point3, double>> balls;
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v)
+    if (tr.point(v).weight() > 0) balls.emplace_back(tr.point(v).point(), tr.point(v).weight());
+  auto intersect = domain.construct_intersection_object();
+  std::size_t inserted = 0;
+  Tr::Cell_handle hint;
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return spacings[a] < spacings[b]; });
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k % 256 == 0) report_progress(progress, "surface seeds", static_cast<double>(k) / static_cast<double>(points.size()));
+    const std::size_t i = order[k];
+    const double spacing = spacings[i];
+    const double h = 1e-3 * spacing;
+    Vec3 q;
+    if (!project_onto_surface(surface, points[i], 0.25 * spacing, spacing, h, q)) continue;
+    Vec3 g = implicit_gradient(surface, q, h);
+    const double length = norm(g);
+    if (!(length > 0)) continue;
+    g = (0.05 * spacing / length) * g;
+    const auto hit = intersect(Kernel::Segment_3(detail::to_cgal(q - g), detail::to_cgal(q + g)));
+    if (std::get<2>(hit) != 2) continue;
+    const detail::Point3 p = std::get<0>(hit);
+    if (tr.number_of_vertices() > 0) {
+      const Vertex_handle nearest = tr.nearest_power_vertex(p, hint);
+      if (nearest != Vertex_handle() && !tr.is_infinite(nearest) &&
+          CGAL::squared_distance(p, tr.point(nearest).point()) < 0.25 * spacing * spacing)
+        continue;
+    }
+    const bool near_ball = std::any_of(balls.begin(), balls.end(), [&p](const auto& ball) {
+      return CGAL::squared_distance(p, ball.first) <= 4 * ball.second;
+    });
+    if (near_ball) continue;
+    const Vertex_handle v = tr.insert(Tr::Weighted_point(p, 0), hint);
+    if (v == Vertex_handle()) continue;
+    hint = v->cell();
+    c3t3.set_dimension(v, 2);
+    c3t3.set_index(v, std::get<1>(hit));
+    ++inserted;
+  }
+  return inserted;
+}
+
 /// Splits the polylines where they lie farther from the implicit surface
 /// than the largest ball can reach: those stretches are reported, not
 /// protected (a ball that misses the surface leaves its vertex out of the
@@ -294,6 +345,15 @@ RefinementCriteria RefinementCriteria::from_spacing(double d_prime) {
 
 void ImplicitMeshingOptions::check() const {
   criteria.check();
+  if (!(seed_spacing >= 0) || !std::isfinite(seed_spacing))
+    throw InvalidArgument("data seed spacing must be non-negative (got " + format_number(seed_spacing) + ")");
+  for (const Vec3& p : data_seeds)
+    for (double c : p)
+      if (!std::isfinite(c)) throw InvalidInput("a data seed has a non-finite coordinate");
+  if (!data_seed_spacings.empty() && data_seed_spacings.size() != data_seeds.size())
+    throw InvalidArgument("data seed spacings must be empty or one per seed");
+  for (double s : data_seed_spacings)
+    if (!(s > 0) || !std::isfinite(s)) throw InvalidArgument("data seed spacings must be positive (got " + format_number(s) + ")");
   if (!features.polylines.empty()) {
     if (!(features.ball_radius > 0) || !std::isfinite(features.ball_radius))
       throw InvalidArgument("protecting-ball radius must be positive (got " + format_number(features.ball_radius) + ")");
@@ -371,6 +431,12 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
     report_progress(progress, "protecting balls", 1.0);
   }
   insert_surface_seeds(c3t3, domain);
+  if (!options.data_seeds.empty()) {
+    const double spacing = options.seed_spacing > 0 ? options.seed_spacing : options.criteria.edge_length;
+    std::vector<double> spacings = options.data_seed_spacings;
+    spacings.resize(options.data_seeds.size(), spacing);
+    result.data_seeds = insert_data_seeds(c3t3, domain, surface, options.data_seeds, spacings, progress);
+  }
 
   report_progress(progress, "refinement", 0.0);
   CGAL::Mesh_3::Mesher_3<C3t3, Criteria, Domain> mesher(c3t3, domain, criteria, CGAL::MANIFOLD, max_vertices, &error);

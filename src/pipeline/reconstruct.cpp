@@ -26,6 +26,8 @@ void ReconstructOptions::check(std::size_t n) const {
     throw InvalidArgument("trim distance must be >= 0 (got " + format_number(trim_distance) + ")");
   if (!(poisson_spacing >= 0 && poisson_spacing <= 4))
     throw InvalidArgument("Poisson sample spacing is a fraction of d' in [0, 4] (got " + format_number(poisson_spacing) + ")");
+  if (!(data_seed_spacing == 0 || (data_seed_spacing >= 0.5 && data_seed_spacing <= 100)))
+    throw InvalidArgument("data seed spacing is 0 or a fraction of d' in [0.5, 100] (got " + format_number(data_seed_spacing) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
     throw InvalidArgument("spacing k = " + format_number(spacing_k) + " needs more than k points, the set has " + format_number(n));
 }
@@ -66,6 +68,30 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
 }
 
 namespace {
+
+/// Data seeds for the refinement (ImplicitMeshingOptions::data_seeds): one
+/// point per cell of `spacing`, and, where the solid (or a gap) is thinner
+/// than spacing / 2, every point with a spacing of twice the local
+/// thickness, so both sides get vertices close enough for the restricted
+/// Delaunay triangulation to separate them. Walls thinner than the noise or
+/// than one average spacing are not looked for.
+void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult& result, ImplicitMeshingOptions& meshing) {
+  const double min_thickness = std::max(result.average_spacing, 4 * result.features.noise_estimate);
+  meshing.seed_spacing = spacing;
+  if (min_thickness < 0.5 * spacing) {
+    const std::vector<double> thickness = local_thickness(oriented, min_thickness, 0.5 * spacing);
+    for (std::size_t i = 0; i < oriented.size(); ++i) {
+      if (!std::isfinite(thickness[i])) continue;
+      meshing.data_seeds.push_back(oriented.points[i]);
+      meshing.data_seed_spacings.push_back(2 * thickness[i]);
+      ++result.thin_points;
+    }
+  }
+  PointSet grid{oriented.points, {}, {}};
+  grid_simplify(grid, spacing);
+  meshing.data_seeds.insert(meshing.data_seeds.end(), grid.points.begin(), grid.points.end());
+  meshing.data_seed_spacings.resize(meshing.data_seeds.size(), spacing);
+}
 
 ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
   ReconstructResult result;
@@ -128,22 +154,26 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
 
   std::unique_ptr<ImplicitSurface> surface;
   PoissonDiagnostics diagnostics;
+  PointSet oriented;  // the points and normals Poisson was solved with
   // With automatic normals, CVCM normals whose Poisson function disagrees
   // with them (needle-like spikes, where the covariance's main axis runs
   // along the spike: CGAL's star.off) are replaced by jet normals; the
   // function that agrees better with its own normals is kept.
   const bool may_fall_back = needs_normals && cvcm && options.normal_source == NormalSource::Automatic;
   try {
-    surface = solve(needs_normals ? oriented_normals(cvcm, "normals") : input, diagnostics, "poisson");
+    oriented = needs_normals ? oriented_normals(cvcm, "normals") : input;
+    surface = solve(oriented, diagnostics, "poisson");
   } catch (const NumericalFailure&) {
     if (!may_fall_back) throw;
   }
   if (may_fall_back && diagnostics.normal_agreement < 0.9) {
     PoissonDiagnostics fallback;
     try {
-      auto retry = solve(oriented_normals(false, "normals (fallback)"), fallback, "poisson (fallback)");
+      PointSet jet = oriented_normals(false, "normals (fallback)");
+      auto retry = solve(jet, fallback, "poisson (fallback)");
       if (!surface || fallback.normal_agreement > diagnostics.normal_agreement) {
         surface = std::move(retry);
+        oriented = std::move(jet);
         diagnostics = fallback;
         result.normal_source = estimated_name + " (cvcm fallback)";
       }
@@ -164,25 +194,41 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
     surface = std::move(restriction.surface);
     result.restricted = restriction.applied;
   }
+  ImplicitMeshingOptions meshing;
+  meshing.criteria = result.criteria;
+  meshing.max_facets = options.max_facets;
+  meshing.expected_facets = estimate;
+  meshing.seed = options.seed;
+  meshing.features.polylines = result.features.graph.polylines;
+  meshing.features.ball_radius = options.ball_radius * result.d_prime;
+  meshing.features.adapt_to_gap = options.adapt_balls_to_gap;
+  if (options.data_seed_spacing > 0) {
+    StageTimer timer(result.stages, "seeds");
+    add_data_seeds(oriented, options.data_seed_spacing * result.d_prime, result, meshing);
+  }
   {
     StageTimer timer(result.stages, "refinement");
-    ImplicitMeshingOptions meshing;
-    meshing.criteria = result.criteria;
-    meshing.max_facets = options.max_facets;
-    meshing.expected_facets = estimate;
-    meshing.seed = options.seed;
-    meshing.features.polylines = result.features.graph.polylines;
-    meshing.features.ball_radius = options.ball_radius * result.d_prime;
-    meshing.features.adapt_to_gap = options.adapt_balls_to_gap;
     result.meshing = mesh_implicit_surface(*surface, meshing, progress);
     result.mesh = std::move(result.meshing.mesh);
     result.meshing.mesh = {};
+  }
+  // The facets along protected edges lean with the rounded Poisson surface:
+  // their third vertices go onto the face planes of the data.
+  if (options.flatten_features && !result.meshing.feature_edges.empty()) {
+    StageTimer timer(result.stages, "flattening");
+    FlatteningOptions flattening;
+    flattening.radius = options.ball_radius * result.d_prime;
+    flattening.max_move = 0.25 * result.d_prime;
+    flattening.max_residual = 0.15 * result.d_prime;
+    result.flattened_vertices =
+        flatten_next_to_features(result.mesh, result.meshing.feature_edges, oriented.points, oriented.normals, flattening);
   }
   if (options.trim_distance > 0) {
     StageTimer timer(result.stages, "trim");
     result.trimmed_facets =
         trim_far_from_points(result.mesh, input.points, trim_distance);
     if (result.mesh.faces.empty()) throw NumericalFailure("reconstruction: no facet of the mesh lies near the input points");
+    result.clipped_facets = clip_boundary_to_points(result.mesh, input.points, result.average_spacing);
     result.boundary_edges = count_boundary_edges(result.mesh);
   }
   return result;

@@ -224,3 +224,22 @@ TEST(Clean, RunsTheStepsOfFigureA2InOrder) {
   bad.outliers = PercentageOutlierOptions{24, 100.0};
   EXPECT_THROW(clean_point_set(ps, bad), InvalidInput) << "nothing left";
 }
+
+// Local thickness: two parallel sheets 0.1 apart face each other; a single
+// sheet has nothing in front of it.
+TEST(LocalThickness, FindsTheOppositeSheetOnly) {
+  PointSet two;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (double z : {0.0, 0.1}) {
+        two.points.push_back({i * 0.02, j * 0.02, z});
+        two.normals.push_back({0, 0, z > 0 ? 1.0 : -1.0});
+      }
+  const std::vector<double> t = local_thickness(two, 0.01, 0.3);
+  for (double x : t) EXPECT_NEAR(x, 0.1, 1e-9);
+  PointSet one;
+  for (std::size_t i = 0; i < two.size(); i += 2) one.points.push_back(two.points[i]), one.normals.push_back(two.normals[i]);
+  for (double x : local_thickness(one, 0.01, 0.3)) EXPECT_TRUE(std::isinf(x));
+  EXPECT_THROW(local_thickness(PointSet{two.points, {}, {}}, 0.01, 0.3), InvalidArgument);
+  EXPECT_THROW(local_thickness(two, 0.3, 0.1), InvalidArgument);
+}

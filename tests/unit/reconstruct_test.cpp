@@ -98,6 +98,7 @@ TEST(FeaturePreservingReconstruction, CubeKeepsTwelveSharpEdgesAndEightCorners) 
   EXPECT_EQ(r.meshing.represented_segments, r.meshing.protected_segments);
   EXPECT_TRUE(r.meshing.uncovered.empty());
   EXPECT_EQ(r.boundary_edges, 0u);
+  EXPECT_GT(r.flattened_vertices, 0u);
   expect_valid_and_close(r.mesh, cube, 0.005);
   // The feature edges of the mesh: all 12 cube edges, nothing else.
   FeatureEvalOptions eval;
@@ -153,6 +154,17 @@ TEST(FeaturePreservingReconstruction, OpenSheetIsTrimmedToTheData) {
   EXPECT_GT(r.trimmed_facets, 0u);
   EXPECT_GT(r.boundary_edges, 0u);
   for (const Vec3& v : r.mesh.vertices) EXPECT_LT(std::abs(v[2] - 0.05 * std::sin(3.0 * v[0])), 0.03);
+  // The boundary is cut along the data's edge, not left overhanging it by
+  // the trim distance (about 5 spacings).
+  EXPECT_GT(r.clipped_facets, 0u);
+  const double margin = 1.5 * r.average_spacing;
+  for (const Vec3& v : r.mesh.vertices) {
+    EXPECT_GT(v[0], -margin);
+    EXPECT_LT(v[0], 1.004 + margin);
+    EXPECT_GT(v[1], -margin);
+    EXPECT_LT(v[1], 1 + margin);
+  }
+  EXPECT_TRUE(check_topology(r.mesh).manifold());
 }
 
 // 30k points: PIF rounds the sharp edges, whose error dominates; the 200k

@@ -1,0 +1,122 @@
+// Delaunay refinement of implicit surfaces (6.2.1, 7.3) and the post-passes
+// that go beyond the thesis, on analytic surfaces whose answer is known.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "sharpmesh/errors.h"
+#include "sharpmesh/eval.h"
+#include "sharpmesh/implicit.h"
+
+#include "sharpmesh/meshing.h"
+
+using namespace sharpmesh;
+
+namespace {
+
+/// A unit sphere with a thin plate sticking out of it along +x: the plate
+/// spans x in [0.7, 1.7], y in [-0.4, 0.4] and is `thickness` thick in z.
+class SphereWithFin : public ImplicitSurface {
+ public:
+  explicit SphereWithFin(double thickness) : half_{0.5, 0.4, thickness / 2} {}
+  double value(const Vec3& p) const override {
+    const double sphere = norm(p) - 1;
+    const Vec3 q{std::abs(p[0] - 1.2) - half_[0], std::abs(p[1]) - half_[1], std::abs(p[2]) - half_[2]};
+    const Vec3 outside{std::max(q[0], 0.0), std::max(q[1], 0.0), std::max(q[2], 0.0)};
+    const double box = norm(outside) + std::min(std::max(q[0], std::max(q[1], q[2])), 0.0);
+    return std::min(sphere, box);
+  }
+  Vec3 bounding_center() const override { return {0.35, 0, 0}; }
+  double bounding_radius() const override { return 1.5; }
+  Vec3 inside_point() const override { return {0, 0, 0}; }
+
+ private:
+  Vec3 half_;
+};
+
+double farthest_x(const SurfaceMesh& mesh) {
+  double x = -1e9;
+  for (const Vec3& v : mesh.vertices) x = std::max(x, v[0]);
+  return x;
+}
+
+}  // namespace
+
+// A fin of a thirteenth of the facet size: the refinement steps over it (a
+// Voronoi edge through both of its sides shows no sign change). Data seeds
+// on the fin, as dense as twice its thickness (what reconstruct gives thin
+// parts), let the restricted Delaunay triangulation separate its sides.
+TEST(ImplicitMeshing, DataSeedsKeepAFinThinnerThanTheFacets) {
+  const double thickness = 0.03;
+  const SphereWithFin surface(thickness);
+  ImplicitMeshingOptions options;
+  options.criteria.edge_length = 0.4;
+  options.criteria.distance = 0.04;
+  const ImplicitMeshingResult plain = mesh_implicit_surface(surface, options);
+  EXPECT_EQ(plain.data_seeds, 0u);
+  EXPECT_LT(farthest_x(plain.mesh), 1.3);  // the fin is lost
+
+  for (double x = 0.71; x <= 1.7; x += 0.02)
+    for (double y = -0.39; y <= 0.4; y += 0.02)
+      for (double z : {-thickness / 2, thickness / 2}) {
+        options.data_seeds.push_back({x, y, z});
+        options.data_seed_spacings.push_back(2 * thickness);
+      }
+  options.data_seeds.push_back({0, 0, 1});  // one on the sphere, at the default spacing
+  options.data_seed_spacings.push_back(0.4);
+  const ImplicitMeshingResult seeded = mesh_implicit_surface(surface, options);
+  EXPECT_GT(seeded.data_seeds, 100u);
+  EXPECT_GT(farthest_x(seeded.mesh), 1.65);  // the fin reaches its tip
+  for (const Vec3& v : seeded.mesh.vertices) EXPECT_LT(std::abs(surface.value(v)), 1e-3);
+  const TopologyReport t = check_topology(seeded.mesh);
+  EXPECT_TRUE(t.closed());
+  EXPECT_TRUE(t.manifold());
+  EXPECT_FALSE(t.self_intersecting);
+}
+
+TEST(ImplicitMeshing, RejectsNonFiniteDataSeeds) {
+  const SphereWithFin surface(0.03);
+  ImplicitMeshingOptions options;
+  options.criteria.edge_length = 0.4;
+  options.criteria.distance = 0.04;
+  options.data_seeds.push_back({NAN, 0, 0});
+  EXPECT_THROW(mesh_implicit_surface(surface, options), InvalidInput);
+  options.data_seeds = {{1, 0, 0}};
+  options.data_seed_spacings = {0.1, 0.2};
+  EXPECT_THROW(mesh_implicit_surface(surface, options), InvalidArgument);
+  options.data_seed_spacings = {0};
+  EXPECT_THROW(mesh_implicit_surface(surface, options), InvalidArgument);
+  options.data_seed_spacings.clear();
+  options.seed_spacing = -1;
+  EXPECT_THROW(mesh_implicit_surface(surface, options), InvalidArgument);
+}
+
+// A flat square mesh overhanging its data (points on the left half only):
+// the clip cuts it where the distance to the data reaches the clip distance.
+TEST(BoundaryClip, CutsTheOverhangAlongTheData) {
+  SurfaceMesh square;
+  const int n = 20;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) square.vertices.push_back({i / double(n), j / double(n), 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto a = static_cast<std::uint32_t>(j * (n + 1) + i);
+      square.faces.push_back({a, a + 1, a + n + 2});
+      square.faces.push_back({a, a + n + 2, a + n + 1});
+    }
+  std::vector<Vec3> points;
+  for (int j = 0; j <= 100; ++j)
+    for (int i = 0; i <= 50; ++i) points.push_back({i / 100.0, j / 100.0, 0});
+  SurfaceMesh clipped = square;
+  EXPECT_GT(clip_boundary_to_points(clipped, points, 0.05), 0u);
+  for (const Vec3& v : clipped.vertices) EXPECT_LE(v[0], 0.5 + 0.05 + 1e-6);
+  EXPECT_GT(farthest_x(clipped), 0.5 + 0.05 - 1e-3);
+  const TopologyReport t = check_topology(clipped);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.components, 1u);
+  // A closed mesh has no boundary to clip.
+  SurfaceMesh tetra{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}};
+  EXPECT_EQ(clip_boundary_to_points(tetra, {{0, 0, 0}}, 0.01), 0u);
+  EXPECT_EQ(tetra.faces.size(), 4u);
+}
