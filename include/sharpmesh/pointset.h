@@ -53,8 +53,9 @@ std::size_t remove_duplicate_points(PointSet& points);
 /// Local thickness at each point (beyond the thesis): the distance to the
 /// nearest point that faces it across the solid or across a gap (normals
 /// parallel, either orientation, and lying within 30 degrees of the
-/// normal's line), looked for between min_thickness and max_thickness;
-/// infinity where there is none. Needs one (unoriented) normal per point.
+/// normal's line), looked for between min_thickness (raised to 4x the
+/// noise level measured on the points) and max_thickness; infinity where
+/// there is none. Needs one (unoriented) normal per point.
 std::vector<double> local_thickness(const PointSet& points, double min_thickness, double max_thickness);
 
 /// Keeps one point per cell of a regular grid of the given cell size (App. A.5).

@@ -76,10 +76,9 @@ namespace {
 /// Delaunay triangulation to separate them. Walls thinner than the noise or
 /// than one average spacing are not looked for.
 void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult& result, ImplicitMeshingOptions& meshing) {
-  const double min_thickness = std::max(result.average_spacing, 4 * result.features.noise_estimate);
   meshing.seed_spacing = spacing;
-  if (min_thickness < 0.5 * spacing) {
-    const std::vector<double> thickness = local_thickness(oriented, min_thickness, 0.5 * spacing);
+  if (result.average_spacing < 0.5 * spacing) {
+    const std::vector<double> thickness = local_thickness(oriented, result.average_spacing, 0.5 * spacing);
     for (std::size_t i = 0; i < oriented.size(); ++i) {
       if (!std::isfinite(thickness[i])) continue;
       meshing.data_seeds.push_back(oriented.points[i]);
