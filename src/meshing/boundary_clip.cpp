@@ -60,6 +60,7 @@ std::size_t clip_boundary_to_points(SurfaceMesh& mesh, const std::vector<Vec3>& 
   std::queue<std::size_t> queue;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     if (on_boundary[f] && has_outside(f)) in_band[f] = 1, queue.push(f);
+  if (queue.empty()) return 0;
   while (!queue.empty()) {
     const std::size_t f = queue.front();
     queue.pop();
@@ -103,10 +104,6 @@ std::size_t clip_boundary_to_points(SurfaceMesh& mesh, const std::vector<Vec3>& 
       if (outside(a) != outside(b)) polygon.push_back(outside(a) ? crossing(b, a) : crossing(a, b));
     }
     for (std::size_t k = 1; k + 1 < polygon.size(); ++k) faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
-  }
-  if (clipped == 0) {
-    mesh.vertices.resize(dist.size());
-    return 0;
   }
   // Drop the vertices no facet uses any more.
   std::vector<std::uint32_t> remap(mesh.vertices.size(), UINT32_MAX);

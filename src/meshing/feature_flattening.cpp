@@ -7,6 +7,7 @@
 // mesh there, i.e. onto the face it belongs to.
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -70,9 +71,31 @@ std::size_t flatten_next_to_features(SurfaceMesh& mesh, const std::vector<Polyli
     target[m] = {r.x(), r.y(), r.z()};
     moved[m] = 1;
   });
+  // A move that turns one of the vertex's facets by more than 30 degrees
+  // (a coarse mesh, where the plane is far from the facets) is dropped, so
+  // no facet folds over.
+  std::vector<std::vector<std::uint32_t>> faces_of(mesh.vertices.size());
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
+    for (std::uint32_t v : mesh.faces[f])
+      if (candidate[v]) faces_of[v].push_back(f);
+  const double cos_turn = std::cos(30.0 * M_PI / 180.0);
+  auto facet_normal = [&](const Triangle& t, std::uint32_t v, const Vec3& at) {
+    auto position = [&](std::uint32_t w) { return w == v ? at : mesh.vertices[w]; };
+    return cross(position(t[1]) - position(t[0]), position(t[2]) - position(t[0]));
+  };
   std::size_t count = 0;
-  for (std::size_t m = 0; m < moving.size(); ++m)
-    if (moved[m]) mesh.vertices[moving[m]] = target[m], ++count;
+  for (std::size_t m = 0; m < moving.size(); ++m) {
+    if (!moved[m]) continue;
+    const std::uint32_t v = moving[m];
+    const bool folds = std::any_of(faces_of[v].begin(), faces_of[v].end(), [&](std::uint32_t f) {
+      const Vec3 before = facet_normal(mesh.faces[f], v, mesh.vertices[v]);
+      const Vec3 after = facet_normal(mesh.faces[f], v, target[m]);
+      return !(dot(before, after) > cos_turn * norm(before) * norm(after));
+    });
+    if (folds) continue;
+    mesh.vertices[v] = target[m];
+    ++count;
+  }
   return count;
 }
 

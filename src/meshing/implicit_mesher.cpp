@@ -81,8 +81,6 @@ std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Pol
   return out;
 }
 
-/// Surface seeds for components the protecting balls do not reach: the
-/// domain's initial points outside every ball.
 // Mesher_3::refine_mesh() step by step (as CGAL's own loop does), so that the
 // progress callback can cancel, and so that a refinement that keeps working
 // without adding vertices is stopped and its current mesh kept. This happens
@@ -127,17 +125,29 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices,
   result.refinement_steps = steps;
 }
 
-void insert_surface_seeds(C3t3& c3t3, const Domain& domain) {
+/// The protecting balls (weighted vertices) as centre and squared radius.
+std::vector<std::pair<detail::Point3, double>> protecting_balls(const C3t3& c3t3) {
   std::vector<std::pair<detail::Point3, double>> balls;
-  for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v)
-    balls.emplace_back(c3t3.triangulation().point(v).point(), c3t3.triangulation().point(v).weight());
+  const Tr& tr = c3t3.triangulation();
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v)
+    if (tr.point(v).weight() > 0) balls.emplace_back(tr.point(v).point(), tr.point(v).weight());
+  return balls;
+}
+
+/// Whether p lies within the diameter of a protecting ball of its centre.
+bool near_a_ball(const std::vector<std::pair<detail::Point3, double>>& balls, const detail::Point3& p) {
+  return std::any_of(balls.begin(), balls.end(),
+                     [&p](const auto& ball) { return CGAL::squared_distance(p, ball.first) <= 4 * ball.second; });
+}
+
+/// Surface seeds for components the protecting balls do not reach: the
+/// domain's initial points outside every ball.
+void insert_surface_seeds(C3t3& c3t3, const Domain& domain) {
+  const auto balls = protecting_balls(c3t3);
   std::vector<std::pair<detail::Point3, Domain::Index>> seeds;
   domain.construct_initial_points_object()(std::back_inserter(seeds));
   for (const auto& [p, index] : seeds) {
-    const bool covered = std::any_of(balls.begin(), balls.end(), [&p = p](const auto& ball) {
-      return CGAL::squared_distance(p, ball.first) <= 4 * ball.second;
-    });
-    if (covered) continue;
+    if (near_a_ball(balls, p)) continue;
     const Vertex_handle v = c3t3.triangulation().insert(Tr::Weighted_point(p, 0));
     if (v == Vertex_handle()) continue;
     c3t3.set_dimension(v, 2);
@@ -153,9 +163,7 @@ void insert_surface_seeds(C3t3& c3t3, const Domain& domain) {
 std::size_t insert_data_seeds(C3t3& c3t3, const Domain& domain, const ImplicitSurface& surface,
                               const std::vector<Vec3>& points, const std::vector<double>& spacings, const Progress& progress) {
   Tr& tr = c3t3.triangulation();
-  std::vector<std::pair<detail::Point3, double>> balls;
-  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v)
-    if (tr.point(v).weight() > 0) balls.emplace_back(tr.point(v).point(), tr.point(v).weight());
+  const auto balls = protecting_balls(c3t3);
   auto intersect = domain.construct_intersection_object();
   std::size_t inserted = 0;
   Tr::Cell_handle hint;
@@ -182,10 +190,7 @@ std::size_t insert_data_seeds(C3t3& c3t3, const Domain& domain, const ImplicitSu
           CGAL::squared_distance(p, tr.point(nearest).point()) < 0.25 * spacing * spacing)
         continue;
     }
-    const bool near_ball = std::any_of(balls.begin(), balls.end(), [&p](const auto& ball) {
-      return CGAL::squared_distance(p, ball.first) <= 4 * ball.second;
-    });
-    if (near_ball) continue;
+    if (near_a_ball(balls, p)) continue;
     const Vertex_handle v = tr.insert(Tr::Weighted_point(p, 0), hint);
     if (v == Vertex_handle()) continue;
     hint = v->cell();

@@ -3,6 +3,7 @@
 // features the PIF baseline (7.3.1).
 #include "sharpmesh/reconstruct.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/recentering.h"
@@ -216,8 +217,10 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
   if (options.flatten_features && !result.meshing.feature_edges.empty()) {
     StageTimer timer(result.stages, "flattening");
     FlatteningOptions flattening;
-    flattening.radius = options.ball_radius * result.d_prime;
-    flattening.max_move = 0.25 * result.d_prime;
+    // The rounding is at the data's scale, a few spacings whatever delta;
+    // a plane over a larger radius would cut through curved faces.
+    flattening.radius = std::min(options.ball_radius * result.d_prime, 3 * result.average_spacing);
+    flattening.max_move = std::min(0.25 * result.d_prime, 2 * result.average_spacing);
     flattening.max_residual = 0.15 * result.d_prime;
     result.flattened_vertices =
         flatten_next_to_features(result.mesh, result.meshing.feature_edges, oriented.points, oriented.normals, flattening);
