@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <unordered_map>
 #include <vector>
 
@@ -71,6 +72,23 @@ inline std::vector<Polyline> chain_edges(const std::vector<Vec3>& vertices, cons
     for (std::uint32_t w : adjacency[v])
       if (!used[edge_key(v, w)]) walk(v, w);
   return polylines;
+}
+
+/// Replaces mesh.faces by `faces` (indices into mesh.vertices) and drops
+/// the vertices no face uses, keeping the order of first use.
+inline void set_faces_and_compact(SurfaceMesh& mesh, std::vector<Triangle> faces) {
+  std::vector<std::uint32_t> remap(mesh.vertices.size(), UINT32_MAX);
+  std::vector<Vec3> vertices;
+  for (Triangle& t : faces)
+    for (std::uint32_t& v : t) {
+      if (remap[v] == UINT32_MAX) {
+        remap[v] = static_cast<std::uint32_t>(vertices.size());
+        vertices.push_back(mesh.vertices[v]);
+      }
+      v = remap[v];
+    }
+  mesh.vertices = std::move(vertices);
+  mesh.faces = std::move(faces);
 }
 
 /// Union-find with path halving.

@@ -105,19 +105,7 @@ std::size_t clip_boundary_to_points(SurfaceMesh& mesh, const std::vector<Vec3>& 
     }
     for (std::size_t k = 1; k + 1 < polygon.size(); ++k) faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
   }
-  // Drop the vertices no facet uses any more.
-  std::vector<std::uint32_t> remap(mesh.vertices.size(), UINT32_MAX);
-  std::vector<Vec3> vertices;
-  for (Triangle& t : faces)
-    for (std::uint32_t& v : t) {
-      if (remap[v] == UINT32_MAX) {
-        remap[v] = static_cast<std::uint32_t>(vertices.size());
-        vertices.push_back(mesh.vertices[v]);
-      }
-      v = remap[v];
-    }
-  mesh.vertices = std::move(vertices);
-  mesh.faces = std::move(faces);
+  detail::set_faces_and_compact(mesh, std::move(faces));
   return clipped;
 }
 

@@ -24,25 +24,10 @@ std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& poi
     keep[f] = !d2.empty() && d2[0] <= max_distance * max_distance;
   });
   std::vector<Triangle> faces;
-  std::vector<std::uint32_t> remap(mesh.vertices.size(), UINT32_MAX);
-  std::vector<Vec3> vertices;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (!keep[f]) continue;
-    Triangle t = mesh.faces[f];
-    for (std::uint32_t& v : t) {
-      if (remap[v] == UINT32_MAX) {
-        remap[v] = static_cast<std::uint32_t>(vertices.size());
-        vertices.push_back(mesh.vertices[v]);
-      }
-      v = remap[v];
-    }
-    faces.push_back(t);
-  }
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (keep[f]) faces.push_back(mesh.faces[f]);
   const std::size_t removed = mesh.faces.size() - faces.size();
-  if (removed > 0) {
-    mesh.faces = std::move(faces);
-    mesh.vertices = std::move(vertices);
-  }
+  if (removed > 0) detail::set_faces_and_compact(mesh, std::move(faces));
   return removed;
 }
 
