@@ -61,6 +61,13 @@ std::vector<double> local_thickness(const PointSet& points, double min_thickness
 /// Keeps one point per cell of a regular grid of the given cell size (App. A.5).
 std::size_t grid_simplify(PointSet& points, double cell_size);
 
+/// Removes every point closer than min_distance to an earlier kept point
+/// (input order), so that no two points are nearer than that. Random
+/// sampling is full of near-coincident pairs; each one costs CGAL's Poisson
+/// (and any Delaunay refinement) extra Steiner points and carries no
+/// information the pair's first point does not.
+std::size_t thin_close_points(PointSet& points, double min_distance);
+
 /// Removes `percentage` % of the points at random, reproducibly for a seed (App. A.5).
 std::size_t random_simplify(PointSet& points, double percentage, std::uint64_t seed = 0);
 

@@ -46,6 +46,10 @@ struct ReconstructOptions {
   /// poisson_spacing x d' (0: on every point). Beyond the thesis: the
   /// function only has to be accurate at the scale of the mesh.
   double poisson_spacing = 0;
+  /// Poisson samples closer than poisson_thinning x avg to an earlier one
+  /// are left out (0: none). Beyond the thesis: near-coincident pairs of a
+  /// random sampling cost CGAL's Poisson most of its Steiner points.
+  double poisson_thinning = 0.4;
   /// Before refinement, one input point per cell of data_seed_spacing x d'
   /// is projected onto the implicit surface and inserted, and more where the
   /// solid or a gap is thinner than half that (0: none). Beyond the thesis:

@@ -55,7 +55,7 @@ void bind_reconstruct(py::module_& m) {
   const FeatureOptions f;
   m.def("reconstruct",
         [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
-           double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double seed_spacing, bool no_flattening, const std::string& normals, int normal_k, int orient_k,
+           double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double seed_spacing, bool no_flattening, const std::string& normals, int normal_k, int orient_k,
            bool recompute_normals, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
            double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k,
            const py::object& progress) {
@@ -69,6 +69,7 @@ void bind_reconstruct(py::module_& m) {
           o.adapt_balls_to_gap = !fixed_balls;
           o.trim_distance = trim;
           o.poisson_spacing = poisson_spacing;
+          o.poisson_thinning = poisson_thinning;
           o.data_seed_spacing = seed_spacing;
           o.flatten_features = !no_flattening;
           if (normals == "auto") {
@@ -99,7 +100,7 @@ void bind_reconstruct(py::module_& m) {
         py::arg("points"), py::arg("point_normals") = py::none(), py::kw_only(), py::arg("delta") = d.delta,
         py::arg("no_features") = false, py::arg("features") = py::none(), py::arg("ball_radius") = d.ball_radius,
         py::arg("fixed_balls") = false, py::arg("trim") = d.trim_distance,
-        py::arg("poisson_spacing") = d.poisson_spacing, py::arg("seed_spacing") = d.data_seed_spacing,
+        py::arg("poisson_spacing") = d.poisson_spacing, py::arg("poisson_thinning") = d.poisson_thinning, py::arg("seed_spacing") = d.data_seed_spacing,
         py::arg("no_flattening") = false, py::arg("normals") = "auto",
         py::arg("normal_k") = d.normals.k, py::arg("orient_k") = d.orientation.k, py::arg("recompute_normals") = false,
         py::arg("max_facets") = d.max_facets, py::arg("seed") = d.seed, py::arg("offset_radius") = f.offset_radius,
@@ -111,7 +112,8 @@ void bind_reconstruct(py::module_& m) {
 delta: mesh size d' = delta x average spacing (7.3.2); no_features: the PIF baseline; features: protect these polylines
 instead of extracting them; ball_radius: fraction of d'; fixed_balls: do not grow balls to reach the implicit surface;
 trim: remove facets farther than trim x d' + 2 avg from the data (0: keep the closed surface); poisson_spacing: solve Poisson on a grid simplification with
-cells of poisson_spacing x d' (0: every point); seed_spacing: before refinement, one input point per cell of
+cells of poisson_spacing x d' (0: every point); poisson_thinning: leave out of Poisson the points closer than
+poisson_thinning x avg to an earlier one (0: none); seed_spacing: before refinement, one input point per cell of
 seed_spacing x d' projected onto the implicit surface as a vertex (0: none); no_flattening: keep the facets along protected
 edges on the Poisson surface; normals (when
 point_normals is None or recompute_normals): 'auto', 'cvcm', 'jet' or 'pca', over normal_k neighbours, oriented over

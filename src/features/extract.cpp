@@ -194,7 +194,17 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
     });
     // A polyline shorter than two successor steps is a stray cluster, not an edge.
     traced.erase(std::remove_if(traced.begin(), traced.end(), [&](const auto& t) { return t.length() < 2 * step; }), traced.end());
-    result.graph = detail::connect_polylines(std::move(traced), options.junction_factor);
+    // A junction lies on the surface: within 2 spacings (or 3 noise
+    // deviations) of a data point.
+    const detail::KnnIndex data(input.points);
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    auto distance_to_data = [&](const Vec3& p) {
+      data.nearest(p, 1, ids, d2);
+      return std::sqrt(d2[0]);
+    };
+    result.graph = detail::connect_polylines(std::move(traced), options.junction_factor, distance_to_data,
+                                             std::max(2 * result.average_spacing, 3 * result.noise_estimate));
     report_progress(progress, "polylines", 1.0);
   }
   return result;

@@ -1,6 +1,7 @@
 // Internal steps of feature recovery (thesis 7.2.2, 7.2.3), CGAL-free.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "pointset/knn.h"
@@ -48,6 +49,9 @@ TracedPolyline trace_polyline(const EdgeCluster& cluster, const std::vector<Vec3
 /// Junction recovery (7.2.3): merges nearby endpoints into darts, cusps and
 /// corners, closes loops, joins collinear pieces, splits polylines that pass
 /// through a junction.
-FeatureGraph connect_polylines(std::vector<TracedPolyline> polylines, double junction_factor);
+/// `distance_to_data`, when given, checks each meeting point: ends whose
+/// lines meet farther than `max_offset` from the data stay apart, as darts.
+FeatureGraph connect_polylines(std::vector<TracedPolyline> polylines, double junction_factor,
+                               const std::function<double(const Vec3&)>& distance_to_data = {}, double max_offset = 0);
 
 }  // namespace sharpmesh::detail

@@ -83,7 +83,8 @@ void set_end(TracedPolyline& line, bool back, const Vec3& p) {
 
 }  // namespace
 
-FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor) {
+FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
+                               const std::function<double(const Vec3&)>& distance_to_data, double max_offset) {
   const double cos_collinear = std::cos(150.0 * M_PI / 180.0);
   std::vector<End> ends;
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -110,9 +111,12 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor)
     const std::size_t a = pair.a, b = pair.b, ga = groups.find(a), gb = groups.find(b);
     if (ga == gb) continue;
     if (ends[a].polyline == ends[b].polyline) {
-      // A loop closes only when the polyline is long and its ends face each other.
+      // A loop closes only when the polyline is long and its ends face each
+      // other. 4 r_junc (20 segments): spool.off's rim circles (45 points,
+      // ends 0.002 apart) stayed open at 10 r_junc, and the two touching end
+      // balls shrank the whole protection to 3,400 tiny balls.
       const double r = std::max(ends[a].r_junc, ends[b].r_junc);
-      if (lines[ends[a].polyline].length() < 10 * r || dot(ends[a].outward, ends[b].outward) > -0.5) continue;
+      if (lines[ends[a].polyline].length() < 4 * r || dot(ends[a].outward, ends[b].outward) > -0.5) continue;
     }
     std::vector<const End*> merged;
     double r = 0;
@@ -157,6 +161,13 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor)
     std::vector<const End*> pointers;
     for (const End& e : group) pointers.push_back(&e);
     const Vec3 p = group.size() == 1 ? group[0].position : meeting_point(pointers);
+    // End lines that meet off the surface (fandisk 30k: two ends 13 spacings
+    // apart met 3.6 spacings from the data, and the mesh followed) do not
+    // make a junction: each end stays where it is, as a dart.
+    if (group.size() > 1 && distance_to_data && distance_to_data(p) > max_offset) {
+      for (std::size_t k = 0; k < group.size(); ++k) nodes.push_back({group[k].position, group[k].r_junc, {list[k]}});
+      continue;
+    }
     for (const End& e : group) set_end(lines[e.polyline], e.back, p);
     nodes.push_back({p, radius, list});
   }

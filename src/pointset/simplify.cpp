@@ -1,4 +1,5 @@
-// Point-set simplification (App. A.5): grid clustering and random removal.
+// Point-set simplification (App. A.5): grid clustering and random removal;
+// beyond the thesis, thinning of near-coincident points.
 #include <CGAL/grid_simplify_point_set.h>
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <random>
 
 #include "pointset/cgal_bridge.h"
+#include "pointset/knn.h"
 #include "sharpmesh/pointset.h"
 
 namespace sharpmesh {
@@ -27,6 +29,27 @@ std::size_t grid_simplify(PointSet& points, double cell_size) {
   for (auto it = first_removed; it != order.end(); ++it) keep[*it] = false;
   const std::size_t removed = static_cast<std::size_t>(order.end() - first_removed);
   points.keep_if(keep);
+  return removed;
+}
+
+std::size_t thin_close_points(PointSet& points, double min_distance) {
+  check_point_set(points, 1, "thinning");
+  if (!(min_distance > 0) || !std::isfinite(min_distance))
+    throw InvalidArgument("thinning: minimum distance must be positive (got " + format_number(min_distance) + ")");
+  const detail::KnnIndex index(points.points);
+  std::vector<bool> keep(points.size(), true);
+  std::vector<std::uint32_t> near;
+  std::size_t removed = 0;
+  // In input order: a kept point removes the later points within reach, so
+  // kept points are at least min_distance apart and the result is the same
+  // on every run.
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!keep[i]) continue;
+    index.within(points.points[i], min_distance, near);
+    for (std::uint32_t j : near)
+      if (j > i && keep[j] && distance(points.points[i], points.points[j]) < min_distance) keep[j] = false, ++removed;
+  }
+  if (removed > 0) points.keep_if(keep);
   return removed;
 }
 

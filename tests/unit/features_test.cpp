@@ -216,3 +216,16 @@ TEST(FeatureEvaluation, GroundTruthAgainstItselfIsPerfect) {
   EXPECT_LE(shifted.precision, 0.5);
   EXPECT_EQ(shifted.recalled_corners, 0u);
 }
+
+// A rim circle that is short next to the sampling's junction radius (spool.off:
+// 45 polyline points, ends 0.002 apart) must close too; left open, its two
+// end balls touch and the protection shrinks to thousands of tiny balls.
+TEST(FeatureGraph, ShortRimCirclesOfAThinRodClose) {
+  const SurfaceMesh rod = test::cylinder_mesh(0.12, 1.0, 256);
+  const FeatureResult r = extract_features(sample(rod, 50000));
+  ASSERT_EQ(r.graph.polylines.size(), 2u);
+  for (const Polyline& circle : r.graph.polylines) {
+    EXPECT_EQ(circle.front(), circle.back());
+    for (const Vec3& p : circle) EXPECT_NEAR(std::hypot(p[0], p[1]), 0.12, 0.01);
+  }
+}

@@ -84,6 +84,21 @@ TEST(Simplify, GridKeepsOnePointPerCell) {
   EXPECT_THROW(grid_simplify(copy, 0.0), InvalidArgument);
 }
 
+TEST(Simplify, ThinningKeepsPointsApartAndTheFirstOfEachPair) {
+  PointSet ps = grid(20, 1.0);  // 400 points 1 apart, then a near copy of each
+  const std::size_t n = ps.size();
+  for (std::size_t i = 0; i < n; ++i) ps.points.push_back(ps.points[i] + Vec3{0.2, 0.1, 0.0});
+  const std::vector<Vec3> originals(ps.points.begin(), ps.points.begin() + n);
+  EXPECT_EQ(thin_close_points(ps, 0.5), n);
+  EXPECT_EQ(ps.points, originals);
+  EXPECT_EQ(thin_close_points(ps, 0.99), 0u);
+  EXPECT_EQ(thin_close_points(ps, 1.01), 200u);  // every other point of each row is within 1
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    for (std::size_t j = i + 1; j < ps.size(); ++j) EXPECT_GE(distance(ps.points[i], ps.points[j]), 1.01);
+  EXPECT_THROW(thin_close_points(ps, 0.0), InvalidArgument);
+  EXPECT_THROW(thin_close_points(ps, std::nan("")), InvalidArgument);
+}
+
 TEST(Simplify, RandomIsExactAndReproducible) {
   PointSet a = grid(20, 1.0), b = grid(20, 1.0), c = grid(20, 1.0);
   EXPECT_EQ(random_simplify(a, 25.0, 7), 100u);
