@@ -124,9 +124,12 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
   std::vector<std::uint32_t> edge_ids;
   PointSet smoothed;
   const PointSet* cloud = &input;
+  std::unique_ptr<detail::KnnIndex> input_index;  // also checks the junctions against the data
   {
     StageTimer timer(result.stages, "detection");
-    auto index = std::make_unique<detail::KnnIndex>(input.points);
+    input_index = std::make_unique<detail::KnnIndex>(input.points);
+    std::unique_ptr<detail::KnnIndex> smoothed_index;
+    const detail::KnnIndex* index = input_index.get();
     if (options.denoise_k <= 0) classify_cloud(input.points, *index, options, result, progress);
     // Beyond the thesis: under noise comparable to the sampling spacing the
     // Voronoi cells turn into cones (Fig. 7.2 right), the anisotropy of the
@@ -154,7 +157,8 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
       jet.k = std::min<int>(result.denoise_k, static_cast<int>(input.size()) - 1);
       jet_smooth(smoothed, jet);
       cloud = &smoothed;
-      index = std::make_unique<detail::KnnIndex>(smoothed.points);
+      smoothed_index = std::make_unique<detail::KnnIndex>(smoothed.points);
+      index = smoothed_index.get();
       classify_cloud(smoothed.points, *index, options, result, progress);
       result.denoise_passes = pass + 1;
     }
@@ -196,11 +200,10 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
     traced.erase(std::remove_if(traced.begin(), traced.end(), [&](const auto& t) { return t.length() < 2 * step; }), traced.end());
     // A junction lies on the surface: within 2 spacings (or 3 noise
     // deviations) of a data point.
-    const detail::KnnIndex data(input.points);
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     auto distance_to_data = [&](const Vec3& p) {
-      data.nearest(p, 1, ids, d2);
+      input_index->nearest(p, 1, ids, d2);
       return std::sqrt(d2[0]);
     };
     result.graph = detail::connect_polylines(std::move(traced), options.junction_factor, distance_to_data,
