@@ -155,7 +155,7 @@ Command add_reconstruct(CLI::App& app) {
           {"estimated_facets", result.estimated_facets}}},
         {"counts",
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
-          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source},
+          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
           {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
@@ -164,6 +164,11 @@ Command add_reconstruct(CLI::App& app) {
     report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}};
     if (result.meshing.refinement_stalled && !common->quiet)
       std::fprintf(stderr, "reconstruct: warning: refinement stopped adding vertices and was ended early; check the mesh's topology\n");
+    if (!common->quiet && result.normal_source == "input (re-oriented)")
+      std::fprintf(stderr, "reconstruct: note: the input's normal signs are inconsistent (%.0f%% agree with a consistent orientation); re-oriented by MST\n",
+                   100 * result.input_normal_agreement);
+    if (!common->quiet && result.normal_source.find("input normals unusable") != std::string::npos)
+      std::fprintf(stderr, "reconstruct: note: fewer than half of the input's normals are non-zero; normals estimated instead\n");
     if (options.feature_mode == FeatureMode::Extract) report["features"] = feature_report(result.features, options.features, diagonal);
     write_report(common->report, report);
   };

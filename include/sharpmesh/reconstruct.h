@@ -80,7 +80,10 @@ struct ReconstructResult {
   std::size_t poisson_points = 0;    ///< samples the Poisson equation was solved on
   double normal_agreement = 0;       ///< of the Poisson function with its normals (PoissonDiagnostics)
   bool normals_estimated = false;
-  std::string normal_source;         ///< "input", "cvcm", "jet", "pca" or "jet (cvcm fallback)"
+  std::string normal_source;         ///< "input", "input (re-oriented)", "cvcm", "jet", "pca", "jet (cvcm fallback)"; "... (input normals unusable)" when fewer than half of the file's normals were non-zero
+  /// Share of the input's normals whose sign the tangent MST orientation of
+  /// their lines keeps (between 0.1 and 0.9: inconsistent, re-oriented); 0 without input normals.
+  double input_normal_agreement = 0;
   FeatureResult features;            ///< when extracted (graph only when given)
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)

@@ -5,6 +5,7 @@
 // size that grows where the polyline lies off the implicit surface (the gap
 // of 7.5, Fig. 7.18; the thesis's future work in 8.2).
 #include <CGAL/Labeled_mesh_domain_3.h>
+#include <CGAL/Mesh_3/Dump_c3t3.h>
 #include <CGAL/Mesh_3/Mesher_3.h>
 #include <CGAL/Mesh_3/Protect_edges_sizing_field.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
@@ -36,6 +37,19 @@ using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_ta
 using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
 using Vertex_handle = Tr::Vertex_handle;
+
+}  // namespace
+}  // namespace sharpmesh
+
+// Before it throws on an internal error, CGAL's Mesh_3 writes dump-bug.mesh
+// and dump-bug.binary.cgal (1.5 MB) into the working directory; a library
+// must not leave files in its caller's folder. The error itself is turned
+// into a NumericalFailure below.
+template <>
+void CGAL::dump_c3t3<sharpmesh::C3t3>(const sharpmesh::C3t3&, std::string) {}
+
+namespace sharpmesh {
+namespace {
 
 /// Radius of the protecting ball at a point of a feature: the thesis's
 /// 2/3 d', grown to gap_margin x the distance to the implicit surface.
@@ -377,9 +391,10 @@ double estimate_facet_count(double area, const RefinementCriteria& criteria) {
   return area / (std::sqrt(3.0) / 4.0 * edge * edge);
 }
 
-ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
-                                            const Progress& progress) {
-  options.check();
+namespace {
+
+ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
+                                              const Progress& progress) {
   const double radius = surface.bounding_radius();
   if (!(radius > 0)) throw InvalidInput("implicit surface has an empty bounding sphere");
   const double domain_radius = meshing_domain_radius(surface);
@@ -464,6 +479,20 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   std::sort(result.uncovered.begin(), result.uncovered.end(),
             [](const UncoveredGap& x, const UncoveredGap& y) { return x.length > y.length; });
   return result;
+}
+
+}  // namespace
+
+ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
+                                            const Progress& progress) {
+  options.check();
+  try {
+    return refine_implicit_surface(surface, options, progress);
+  } catch (const CGAL::Failure_exception& e) {
+    const std::string what = !e.message().empty() ? e.message() : e.expression();
+    std::string line = what.substr(0, what.find('\n'));
+    throw NumericalFailure("Delaunay refinement failed inside CGAL Mesh_3 (" + line + "); try another --seed or delta");
+  }
 }
 
 }  // namespace sharpmesh

@@ -95,8 +95,58 @@ void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult&
   meshing.data_seed_spacings.resize(meshing.data_seeds.size(), spacing);
 }
 
-ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
+/// Normals read from a file are checked before Poisson trusts them: files
+/// in the wild carry zero normals (CGAL's blobby.xyz: all of them) or
+/// normals whose lines are right but whose signs flip from face to face
+/// (CGAL's cube.pwn: half of them point inwards, and the Poisson surface
+/// broke up into shreds along the grooves). Usable normals are made unit;
+/// when fewer than half are usable they are ignored and estimated instead.
+/// Otherwise PCA normals, which turn smoothly across creases, are oriented
+/// by the tangent MST (App. A.8) and compared with the file's signs: at
+/// between 10% and 90% agreement the signs are inconsistent, and each input
+/// normal takes the sign of the oriented PCA normal (its line is kept).
+/// Consistently inward normals, near 0%, are kept as given.
+enum class InputNormals { Used, Reoriented, Unusable };
+
+InputNormals check_input_normals(PointSet& cloud, const ReconstructOptions& options, double& agreement, const Progress& progress) {
+  std::size_t usable = 0;
+  for (Vec3& n : cloud.normals) {
+    const double length = norm(n);
+    if (std::isfinite(length) && length > 0) {
+      n = (1.0 / length) * n;
+      ++usable;
+    } else {
+      n = {0, 0, 0};
+    }
+  }
+  if (2 * usable < cloud.size()) return InputNormals::Unusable;
+  const int last = static_cast<int>(cloud.size()) - 1;
+  PointSet reference{cloud.points, {}, {}};
+  NormalEstimationOptions pca = options.normals;
+  pca.method = NormalMethod::Pca;
+  pca.k = std::min(pca.k, last);
+  estimate_normals(reference, pca, progress);
+  orient_normals_tangent_mst(reference, std::min(options.orientation.k, last), progress);
+  std::size_t agree = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) agree += dot(reference.normals[i], cloud.normals[i]) > 0;
+  agreement = static_cast<double>(agree) / static_cast<double>(usable);
+  if (agreement <= 0.1 || agreement >= 0.9) return InputNormals::Used;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (dot(reference.normals[i], cloud.normals[i]) < 0) cloud.normals[i] = -1.0 * cloud.normals[i];
+  return InputNormals::Reoriented;
+}
+
+ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOptions& options, const Progress& progress) {
   ReconstructResult result;
+  PointSet checked;
+  InputNormals input_normals = InputNormals::Used;
+  if (given.has_normals() && !options.recompute_normals) {
+    StageTimer timer(result.stages, "normal check");
+    checked = given;
+    input_normals = check_input_normals(checked, options, result.input_normal_agreement, progress);
+    if (input_normals == InputNormals::Unusable) checked.normals.clear();
+  }
+  const PointSet& input = checked.points.empty() ? given : checked;
   result.input_points = input.size();
 
   {
@@ -154,7 +204,9 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
     return poisson_surface(samples, PoissonOptions{}, progress, &diagnostics);
   };
   const std::string estimated_name = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
-  result.normal_source = !needs_normals ? "input" : cvcm ? "cvcm" : estimated_name;
+  result.normal_source = !needs_normals ? (input_normals == InputNormals::Reoriented ? "input (re-oriented)" : "input")
+                         : cvcm ? "cvcm" : estimated_name;
+  if (input_normals == InputNormals::Unusable) result.normal_source += " (input normals unusable)";
   result.normals_estimated = needs_normals;
   result.used_points = input.size();
 

@@ -223,6 +223,49 @@ TEST(FeaturePreservingReconstruction, SpikyStarFallsBackFromCvcmNormals) {
   }
 }
 
+namespace {
+
+PointSet sample_with_normals(const SurfaceMesh& mesh, std::size_t n) {
+  SampleOptions options;
+  options.count = n;
+  options.seed = 11;
+  options.with_normals = true;
+  return sample_mesh(mesh, options);
+}
+
+}  // namespace
+
+// Normals read from a file are checked: consistent ones are used as given;
+// per-face sign flips (CGAL's cube.pwn) are re-oriented; all-zero ones
+// (CGAL's blobby.xyz) are replaced by estimated normals.
+TEST(Reconstruct, InputNormalsAreCheckedBeforePoissonUsesThem) {
+  const SurfaceMesh cube = test::cube_mesh(1.0);
+  const PointSet consistent = sample_with_normals(cube, 30000);
+  ASSERT_TRUE(consistent.has_normals());
+  ReconstructOptions options;  // the whole Chapter 7 pipeline, as in CubeKeepsTwelveSharpEdgesAndEightCorners
+  options.delta = 6;
+  const ReconstructResult kept = reconstruct(consistent, options);
+  EXPECT_EQ(kept.normal_source, "input");
+  EXPECT_GT(kept.input_normal_agreement, 0.99);
+  expect_valid_and_close(kept.mesh, cube, 0.005);
+
+  PointSet flipped = consistent;  // the +x, +y and +z faces point inwards
+  for (Vec3& n : flipped.normals)
+    if (n[0] + n[1] + n[2] > 0.5) n = -1.0 * n;
+  const ReconstructResult reoriented = reconstruct(flipped, options);
+  EXPECT_EQ(reoriented.normal_source, "input (re-oriented)");
+  EXPECT_GT(reoriented.input_normal_agreement, 0.3);
+  EXPECT_LT(reoriented.input_normal_agreement, 0.7);
+  expect_valid_and_close(reoriented.mesh, cube, 0.005);
+
+  PointSet zero = consistent;
+  for (Vec3& n : zero.normals) n = {0, 0, 0};
+  const ReconstructResult estimated = reconstruct(zero, options);
+  EXPECT_TRUE(estimated.normals_estimated);
+  EXPECT_NE(estimated.normal_source.find("input normals unusable"), std::string::npos) << estimated.normal_source;
+  expect_valid_and_close(estimated.mesh, cube, 0.005);
+}
+
 TEST(Reconstruct, RejectsBadDeltaAndExplodingFacetCounts) {
   const PointSet points = sample(test::sphere_mesh(3), 2000);
   ReconstructOptions options;
