@@ -12,7 +12,8 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
   const ImplicitMeshingResult& m = r.meshing;
   nlohmann::json gaps = nlohmann::json::array();
   for (const UncoveredGap& g : m.uncovered)
-    gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", length_json(g.gap, diagonal)}});
+    gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", length_json(g.gap, diagonal)},
+                    {"refused_by_mesher", g.refused_by_mesher}});
   return {{"polylines", r.features.graph.polylines.size()},
           {"protecting_balls", m.protecting_balls},
           {"enlarged_balls", m.enlarged_balls},
@@ -22,7 +23,8 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
           {"represented_fraction", m.protected_segments ? double(m.represented_segments) / m.protected_segments : 1.0},
           {"uncovered_gaps", gaps.size()},
           {"uncovered", gaps},
-          {"feature_edge_polylines", m.feature_edges.size()}};
+          {"feature_edge_polylines", m.feature_edges.size()},
+          {"mesher_retries", m.mesher_retries}};
 }
 
 }  // namespace
@@ -161,7 +163,9 @@ Command add_reconstruct(CLI::App& app) {
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);
-    report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}};
+    report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}, {"runaway", result.meshing.refinement_runaway}};
+    if (result.meshing.refinement_runaway && !common->quiet)
+      std::fprintf(stderr, "reconstruct: warning: refinement was still adding vertices long after the expected count and was ended; check the mesh's topology\n");
     if (result.meshing.refinement_stalled && !common->quiet)
       std::fprintf(stderr, "reconstruct: warning: refinement stopped adding vertices and was ended early; check the mesh's topology\n");
     if (!common->quiet && result.normal_source == "input (re-oriented)")

@@ -47,6 +47,9 @@ struct UncoveredGap {
   Vec3 center{0, 0, 0};  ///< midpoint of the stretch
   double length = 0;     ///< length of the stretch
   double gap = 0;        ///< largest polyline-to-surface distance on it (-1: not found)
+  /// Left out because CGAL's Mesh_3 failed next to it (close or tangled
+  /// features; CGAL issue #9102), and the refinement was run again without it.
+  bool refused_by_mesher = false;
 };
 
 struct ImplicitMeshingOptions {
@@ -86,6 +89,8 @@ struct ImplicitMeshingResult {
   std::size_t data_seeds = 0;         ///< data seeds inserted before refinement
   std::size_t refinement_steps = 0;   ///< Mesher_3 steps
   bool refinement_stalled = false;    ///< stopped after many steps without a new vertex
+  bool refinement_runaway = false;    ///< stopped: still adding vertices long after passing the expected count
+  std::size_t mesher_retries = 0;     ///< refinements run again after a CGAL failure next to a feature
 };
 
 /// Meshes the zero level set of `surface` inside its bounding sphere by

@@ -19,13 +19,32 @@ struct EdgeCluster {
 /// RMS distance from p to its k nearest other points of `index`.
 double rho_k(const KnnIndex& index, const Vec3& p, int k, std::vector<std::uint32_t>& ids, std::vector<double>& d2);
 
+/// Parameters of edge-point sharpening (sharpen.cpp), data units.
+struct SharpeningOptions {
+  double radius = 0;          ///< neighbourhood of the two smooth groups
+  double min_angle_deg = 15;  ///< two faces at least this far apart
+  double max_residual = 0;    ///< RMS of the smooth groups' planes
+  /// A smooth-groups fit this close to an input point is taken at once;
+  /// farther, the plane fallback is tried first; beyond max_data_offset
+  /// neither is taken.
+  double close_to_data = 0;
+  double max_data_offset = 0; ///< a sharpened point this close to an input point at most
+  /// Plane fallback (0 tolerance: off): RANSAC inlier distance, neighbourhood,
+  /// minimum inliers per plane, and how close to the edge each face's inliers must come.
+  double plane_tolerance = 0;
+  double plane_radius = 0;
+  std::size_t min_plane_support = 8;
+  double face_reach = 0;
+  double plane_min_angle_deg = 30;  ///< the fallback's planes at least this far apart
+};
+
 /// Projects each edge point onto the intersection line of the two planes
-/// fitted to the smooth points within `radius` (split by normal); the
-/// direction becomes that line's. Points without two planes at least
-/// `min_angle_deg` apart, or whose planes fit worse than `max_residual`
-/// (RMS), are removed. Returns the number removed.
+/// fitted to the smooth points around it (split by normal), or, where that
+/// fails or lands off the data, of the nearest two RANSAC planes of its
+/// neighbourhood that both reach their intersection; the direction becomes
+/// that line's. Points without such planes are removed. Returns the number removed.
 std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFeature>& features, const KnnIndex& index,
-                                double radius, double min_angle_deg, double max_residual, std::vector<std::uint32_t>& edge_ids,
+                                const SharpeningOptions& options, std::vector<std::uint32_t>& edge_ids,
                                 std::vector<Vec3>& positions, std::vector<Vec3>& directions);
 
 /// Algorithm 2; close pairs are within max(rho_k, min_radius).

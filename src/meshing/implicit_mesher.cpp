@@ -102,9 +102,14 @@ std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Pol
 // balls cannot be repaired: CGAL then rescans it forever (couplingdown 50k).
 // Stalled: no new vertex for 20000 steps, or for max(20 s, the refinement
 // time until the last new vertex).
+// Runaway: past the vertex count the data suggests, CGAL's manifold repair
+// can keep inserting points around a vertex next to protecting balls that it
+// cannot make manifold, ever more slowly (couplingdown 50k: 23k vertices in
+// 65 s for an expected 6k reached in 2 s). Refinement ends once it has run
+// max(10 s, 4x the time it took to reach that count) (`runaway`).
 template <class Mesher>
-void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices, const Progress& progress,
-                     ImplicitMeshingResult& result) {
+void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices, std::size_t expected_vertices,
+                     const Progress& progress, ImplicitMeshingResult& result) {
   using Clock = std::chrono::steady_clock;
   const bool debug = std::getenv("SHARPMESH_DEBUG_REFINE") != nullptr;
   const auto start = Clock::now();
@@ -113,6 +118,7 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices,
   std::size_t steps = 0, last_growth_step = 0, vertices = c3t3.triangulation().number_of_vertices();
   Clock::time_point last_growth = start, last_report = start;
   bool grew = false;
+  double reached_expected = -1;
   while (!mesher.is_algorithm_done()) {
     mesher.one_step();
     ++steps;
@@ -128,6 +134,11 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices,
     if (grew) last_growth = t, grew = false;
     if (steps - last_growth_step > 20000 || seconds(last_growth, t) > std::max(20.0, seconds(start, last_growth))) {
       result.refinement_stalled = true;
+      break;
+    }
+    if (expected_vertices > 0 && now >= expected_vertices && reached_expected < 0) reached_expected = seconds(start, t);
+    if (reached_expected >= 0 && seconds(start, t) > std::max(10.0, 4 * reached_expected)) {
+      result.refinement_runaway = true;
       break;
     }
     if (seconds(last_report, t) > 0.25) {
@@ -460,7 +471,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
 
   report_progress(progress, "refinement", 0.0);
   CGAL::Mesh_3::Mesher_3<C3t3, Criteria, Domain> mesher(c3t3, domain, criteria, CGAL::MANIFOLD, max_vertices, &error);
-  refine_stepwise(mesher, c3t3, max_vertices, progress, result);
+  refine_stepwise(mesher, c3t3, max_vertices, static_cast<std::size_t>(0.5 * options.expected_facets), progress, result);
   if (max_vertices > 0 && c3t3.triangulation().number_of_vertices() >= max_vertices) error = CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED;
   c3t3.clear_manifold_info();
   report_progress(progress, "refinement", 1.0);
@@ -483,15 +494,114 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
 
 }  // namespace
 
+namespace {
+
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  return std::sqrt(CGAL::squared_distance(detail::to_cgal(p), Kernel::Segment_3(detail::to_cgal(a), detail::to_cgal(b))));
+}
+
+/// The point of CGAL's "(x y z w) is already inserted on surface." error.
+bool failure_point(const std::string& message, Vec3& p) {
+  const std::size_t open = message.find('(');
+  if (open == std::string::npos) return false;
+  double w = 0;
+  return std::sscanf(message.c_str() + open, "(%lf %lf %lf %lf)", &p[0], &p[1], &p[2], &w) == 4;
+}
+
+/// Removes every polyline that passes within `reach` of p, and reports
+/// each. (Cutting out only the stretch near p left two new ends there, and
+/// dropping only the nearest polyline left its neighbours: on couplingdown
+/// 50k the next refinement then ran away at the same spot.) False when no
+/// polyline comes that close.
+bool drop_protection_near(std::vector<Polyline>& polylines, const Vec3& p, double reach, std::vector<UncoveredGap>& dropped) {
+  std::vector<Polyline> kept;
+  for (Polyline& line : polylines) {
+    bool near = false;
+    for (std::size_t i = 0; i + 1 < line.size() && !near; ++i) near = distance_to_segment(p, line[i], line[i + 1]) <= reach;
+    if (!near) {
+      kept.push_back(std::move(line));
+      continue;
+    }
+    UncoveredGap gap;
+    Vec3 sum{0, 0, 0};
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      sum = sum + line[i];
+      if (i > 0) gap.length += distance(line[i - 1], line[i]);
+    }
+    gap.center = (1.0 / static_cast<double>(line.size())) * sum;
+    gap.gap = -1;
+    gap.refused_by_mesher = true;
+    dropped.push_back(gap);
+  }
+  const bool any = kept.size() < polylines.size();
+  polylines = std::move(kept);
+  return any;
+}
+
+/// Where a runaway refinement was working: the centre of the densest cell
+/// (of the edge length bound) of mesh edges shorter than 1% of that bound.
+bool runaway_spot(const SurfaceMesh& mesh, double edge_length, Vec3& spot) {
+  std::map<std::array<long, 3>, std::pair<Vec3, std::size_t>> cells;
+  for (const Triangle& t : mesh.faces)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = mesh.vertices[t[k]];
+      const Vec3& b = mesh.vertices[t[(k + 1) % 3]];
+      if (distance(a, b) >= 0.01 * edge_length) continue;
+      const std::array<long, 3> key{static_cast<long>(std::floor(a[0] / edge_length)), static_cast<long>(std::floor(a[1] / edge_length)),
+                                    static_cast<long>(std::floor(a[2] / edge_length))};
+      auto& cell = cells[key];
+      cell.first = cell.first + a;
+      ++cell.second;
+    }
+  std::size_t best = 0;
+  for (const auto& [key, cell] : cells)
+    if (cell.second > best) best = cell.second, spot = (1.0 / static_cast<double>(cell.second)) * cell.first;
+  return best > 0;
+}
+
+}  // namespace
+
 ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
                                             const Progress& progress) {
   options.check();
-  try {
-    return refine_implicit_surface(surface, options, progress);
-  } catch (const CGAL::Failure_exception& e) {
-    const std::string what = !e.message().empty() ? e.message() : e.expression();
-    std::string line = what.substr(0, what.find('\n'));
-    throw NumericalFailure("Delaunay refinement failed inside CGAL Mesh_3 (" + line + "); try another --seed or delta");
+  // CGAL's Mesh_3 (5.5 and still in 2025, issue #9102) can fail next to
+  // protected curves that come close to each other or to another sheet of
+  // the surface (couplingdown's chamfers, rotor's thin wall): with a
+  // refinement point "already inserted on surface", or by a manifold repair
+  // that runs away. The polylines near the spot are dropped, reported, and
+  // the refinement is run again; when no spot is known, without protection.
+  constexpr int kMaxRetries = 4;
+  ImplicitMeshingOptions attempt = options;
+  std::vector<UncoveredGap> dropped;
+  const double reach = 2 * (options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius);
+  auto drop_all = [&] {
+    Vec3 far{INFINITY, INFINITY, INFINITY};
+    drop_protection_near(attempt.features.polylines, far, INFINITY, dropped);
+  };
+  for (int retries = 0;; ++retries) {
+    std::string what;
+    const bool last = retries == kMaxRetries || attempt.features.polylines.empty();
+    try {
+      ImplicitMeshingResult result = refine_implicit_surface(surface, attempt, progress);
+      Vec3 spot;
+      if (result.refinement_runaway && !last && runaway_spot(result.mesh, options.criteria.edge_length, spot)) {
+        if (!drop_protection_near(attempt.features.polylines, spot, reach, dropped)) drop_all();
+        report_progress(progress, "refinement (again, without the features it ran away next to)", 0.0);
+        continue;
+      }
+      result.mesher_retries = static_cast<std::size_t>(retries);
+      result.uncovered.insert(result.uncovered.end(), dropped.begin(), dropped.end());
+      return result;
+    } catch (const CGAL::Failure_exception& e) {
+      what = !e.message().empty() ? e.message() : e.expression();
+    }
+    if (last) {
+      const std::string line = what.substr(0, what.find('\n'));
+      throw NumericalFailure("Delaunay refinement failed inside CGAL Mesh_3 (" + line + "); try another delta");
+    }
+    Vec3 where;
+    if (!failure_point(what, where) || !drop_protection_near(attempt.features.polylines, where, reach, dropped)) drop_all();
+    report_progress(progress, "refinement (again, without the features CGAL failed next to)", 0.0);
   }
 }
 

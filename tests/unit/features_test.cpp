@@ -168,6 +168,33 @@ TEST(FeatureGraph, CylinderGivesTwoClosedCirclesAndNothingOnItsSide) {
   }
 }
 
+// A chamfer about three spacings wide: no point of the chamfer face is
+// smooth, and the two wide faces beside it meet at a virtual corner 1.9
+// spacings off the data. Both 135-degree edges of the chamfer are found, and
+// nothing runs along the virtual corner.
+TEST(FeatureGraph, NarrowChamferGivesItsTwoEdgesNotTheVirtualCorner) {
+  const SurfaceMesh box = test::chamfered_cube_mesh(0.06);
+  const FeatureResult r = extract_features(sample(box, 30000));
+  FeatureEvalOptions options;
+  options.tolerance = 0.005;
+  const FeatureEvaluation e = evaluate_features(r.graph.polylines, {}, box, options);
+  EXPECT_GT(e.recall, 0.9);
+  EXPECT_GT(e.precision, 0.9);
+  // Along the chamfer (|z| < 0.8): polyline points near both chamfer
+  // edges, none near the virtual corner x = y = 1.
+  std::size_t near_first = 0, near_second = 0, near_virtual = 0;
+  for (const Polyline& line : r.graph.polylines)
+    for (const Vec3& p : line) {
+      if (std::abs(p[2]) > 0.8) continue;
+      near_first += std::hypot(p[0] - 1, p[1] - 0.94) < 0.01;
+      near_second += std::hypot(p[0] - 0.94, p[1] - 1) < 0.01;
+      near_virtual += std::hypot(p[0] - 1, p[1] - 1) < 0.02;
+    }
+  EXPECT_GE(near_first, 6u);
+  EXPECT_GE(near_second, 6u);
+  EXPECT_EQ(near_virtual, 0u);
+}
+
 TEST(FeatureDetection, DoesNotDependOnTheThreadCount) {
   const PointSet points = sample(test::cube_mesh(1.0), 20000);
   auto run = [&](int threads) {

@@ -21,6 +21,25 @@ SurfaceMesh cube_mesh(double h) {
   return m;
 }
 
+SurfaceMesh chamfered_cube_mesh(double c) {
+  SurfaceMesh m;
+  // The pentagon A B C1 C2 D at z = -1 (vertices 0-4) and z = 1 (5-9).
+  const double xy[5][2] = {{-1, -1}, {1, -1}, {1, 1 - c}, {1 - c, 1}, {-1, 1}};
+  for (double z : {-1.0, 1.0})
+    for (const auto& p : xy) m.vertices.push_back({p[0], p[1], z});
+  auto tri = [&](int a, int b, int d) { m.faces.push_back({std::uint32_t(a), std::uint32_t(b), std::uint32_t(d)}); };
+  for (int k = 1; k + 1 < 5; ++k) {
+    tri(0, k + 1, k);          // bottom, seen from below
+    tri(5, 5 + k, 5 + k + 1);  // top
+  }
+  for (int k = 0; k < 5; ++k) {  // the five side quads, counter-clockwise from outside
+    const int a = k, b = (k + 1) % 5;
+    tri(a, b, 5 + b);
+    tri(a, 5 + b, 5 + a);
+  }
+  return m;
+}
+
 SurfaceMesh sphere_mesh(int levels, double radius) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   SurfaceMesh m;
