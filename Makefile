@@ -42,6 +42,7 @@ bench: data
 	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHARPMESH_BUILD_BENCH=ON >/dev/null
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 	@bench/run $(BUILD_DIR)
+	@bench/corpus $(BUILD_DIR)
 	@bench/accuracy_vs_size $(BUILD_DIR)
 	@bench/fig714 $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)

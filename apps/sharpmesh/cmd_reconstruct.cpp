@@ -66,7 +66,7 @@ Command add_reconstruct(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--no-flattening", o->no_flattening,
                 "Keep the facets along protected edges on the Poisson surface (the thesis) instead of moving their third vertices onto the data's face planes");
-  sub->add_option("--normals", o->normals, "Normals when the input has none: auto (cvcm with features, else jet), cvcm, jet or pca")
+  sub->add_option("--normals", o->normals, "Normals when the input has none: auto (with features: cvcm, jet where the CVCM is isotropic; else jet), cvcm (thesis 7.4 throughout), jet or pca")
       ->check(CLI::IsMember({"auto", "cvcm", "pca", "jet"}))
       ->capture_default_str();
   sub->add_option("--normal-k", o->reconstruct.normals.k, "Neighbours for jet/pca normal estimation")->capture_default_str();
@@ -157,7 +157,7 @@ Command add_reconstruct(CLI::App& app) {
           {"estimated_facets", result.estimated_facets}}},
         {"counts",
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
-          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement},
+          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
           {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},

@@ -87,6 +87,10 @@ struct NormalEstimationOptions {
 };
 void estimate_normals(PointSet& points, const NormalEstimationOptions& options = {},
                       const Progress& progress = {});
+/// The same estimate at the given points only (their neighbours taken from
+/// the whole set); the other normals are kept (zero if there were none).
+void estimate_normals_at(PointSet& points, const std::vector<std::uint32_t>& indices,
+                         const NormalEstimationOptions& options = {});
 
 /// Orients normals by propagation along a minimum spanning tree of the
 /// k-nearest-neighbour graph (Hoppe et al. 1992; App. A.8). Points whose

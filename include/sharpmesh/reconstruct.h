@@ -84,6 +84,9 @@ struct ReconstructResult {
   /// Share of the input's normals whose sign the tangent MST orientation of
   /// their lines keeps (between 0.1 and 0.9: inconsistent, re-oriented); 0 without input normals.
   double input_normal_agreement = 0;
+  /// CVCM normals replaced by PCA normals where the convolved VCM is
+  /// isotropic (lambda0/lambda1 < 10: thin walls, corners).
+  std::size_t isotropic_cvcm_normals = 0;
   FeatureResult features;            ///< when extracted (graph only when given)
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)

@@ -17,6 +17,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["normals_estimated"] = r.normals_estimated;
   counts["normal_source"] = r.normal_source;
   counts["input_normal_agreement"] = r.input_normal_agreement;
+  counts["isotropic_cvcm_normals"] = r.isotropic_cvcm_normals;
   counts["vertices"] = r.mesh.vertices.size();
   counts["facets"] = r.mesh.faces.size();
   counts["trimmed_facets"] = r.trimmed_facets;

@@ -1,12 +1,18 @@
 // Normal estimation by PCA or jet fitting (App. A.7) and MST orientation
 // (Hoppe et al. 1992; App. A.8).
+#include <CGAL/Eigen_svd.h>
+#include <CGAL/Monge_via_jet_fitting.h>
 #include <CGAL/jet_estimate_normals.h>
 #include <CGAL/mst_orient_normals.h>
 #include <CGAL/pca_estimate_normals.h>
 
+#include <tbb/parallel_for.h>
+
 #include <tuple>
 
+#include "core/plane_fit.h"
 #include "pointset/cgal_bridge.h"
+#include "pointset/knn.h"
 #include "sharpmesh/pointset.h"
 
 namespace sharpmesh {
@@ -58,6 +64,42 @@ void estimate_normals(PointSet& points, const NormalEstimationOptions& options, 
     const double length = norm(n);
     points.normals[std::get<2>(r)] = length > 0 && std::isfinite(length) ? (1.0 / length) * n : Vec3{0, 0, 0};
   }
+}
+
+void estimate_normals_at(PointSet& points, const std::vector<std::uint32_t>& indices, const NormalEstimationOptions& options) {
+  check_point_set(points, 4, "normal estimation");
+  options.check(points.size());
+  if (points.normals.size() != points.size()) points.normals.assign(points.size(), Vec3{0, 0, 0});
+  if (indices.empty()) return;
+  for (std::uint32_t i : indices)
+    if (i >= points.size()) throw InvalidArgument("normal estimation: point index out of range");
+  using Monge = CGAL::Monge_via_jet_fitting<detail::Kernel, CGAL::Simple_cartesian<double>, CGAL::Eigen_svd>;
+  const detail::KnnIndex index(points.points);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    std::vector<detail::Point3> local;
+    std::vector<Eigen::Vector3d> plane_points;
+    for (std::size_t m = range.begin(); m != range.end(); ++m) {
+      const std::uint32_t i = indices[m];
+      index.nearest(points.points[i], options.k + 1, ids, d2);
+      Vec3 n{0, 0, 0};
+      if (options.method == NormalMethod::Jet) {
+        local.clear();
+        for (std::uint32_t j : ids) local.push_back(detail::to_cgal(points.points[j]));
+        Monge fit;
+        n = detail::from_cgal(fit(local.begin(), local.end(), 2, 1).normal_direction());
+      } else {
+        plane_points.clear();
+        for (std::uint32_t j : ids) plane_points.emplace_back(points.points[j][0], points.points[j][1], points.points[j][2]);
+        detail::Plane plane;
+        double rms = 0;
+        if (detail::fit_plane(plane_points, plane, rms)) n = {plane.normal(0), plane.normal(1), plane.normal(2)};
+      }
+      const double length = norm(n);
+      points.normals[i] = length > 0 && std::isfinite(length) ? (1.0 / length) * n : Vec3{0, 0, 0};
+    }
+  });
 }
 
 std::size_t orient_normals_mst(PointSet& points, const NormalOrientationOptions& options, const Progress& progress) {

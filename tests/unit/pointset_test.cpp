@@ -139,6 +139,30 @@ TEST(Normals, SphereNormalsAreRadialAndOrientedOutward) {
   }
 }
 
+// Normals at a subset of the points, neighbours from the whole set: the
+// same lines as the full estimate there, and nothing changed elsewhere.
+TEST(Normals, EstimatesAtGivenPointsOnly) {
+  PointSet all = sphere_points(4000);
+  NormalEstimationOptions jet;  // App. A.7: jet, k = 18
+  estimate_normals(all, jet);
+  PointSet some = sphere_points(4000);
+  some.normals.assign(some.size(), Vec3{0, 0, 7});
+  std::vector<std::uint32_t> indices;
+  for (std::uint32_t i = 0; i < some.size(); i += 5) indices.push_back(i);
+  estimate_normals_at(some, indices, jet);
+  for (std::uint32_t i = 0; i < some.size(); ++i) {
+    if (i % 5 != 0) {
+      EXPECT_EQ(some.normals[i], (Vec3{0, 0, 7}));
+      continue;
+    }
+    EXPECT_NEAR(std::abs(dot(some.normals[i], all.normals[i])), 1.0, 1e-6);
+    const Vec3 radial = (1.0 / norm(some.points[i])) * some.points[i];
+    EXPECT_GT(std::abs(dot(some.normals[i], radial)), 0.99);
+  }
+  indices.push_back(static_cast<std::uint32_t>(some.size()));
+  EXPECT_THROW(estimate_normals_at(some, indices, jet), InvalidArgument);
+}
+
 TEST(Normals, OrientationNeedsNormals) {
   PointSet ps = sphere_points(100);
   EXPECT_THROW(orient_normals_mst(ps), InvalidArgument);
