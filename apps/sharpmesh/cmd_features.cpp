@@ -54,7 +54,7 @@ nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, d
             {"denoise_passes", r.denoise_passes}}},
           {"counts",
            {{"points", r.points.size()}, {"edge_points", r.edge_points}, {"corner_points", r.corner_points},
-            {"unsharpened_edge_points", r.unsharpened_edge_points}, {"clusters", r.clusters}, {"pruned_clusters", r.pruned_clusters}, {"polylines", r.graph.polylines.size()},
+            {"unsharpened_edge_points", r.unsharpened_edge_points}, {"clusters", r.clusters}, {"pruned_clusters", r.pruned_clusters}, {"off_data_polylines", r.off_data_polylines}, {"polylines", r.graph.polylines.size()},
             {"closed_polylines", closed}, {"darts", counts[0]}, {"cusps", counts[1]}, {"corners", counts[2]}}},
           {"junctions", junctions},
           {"stages", stages_json(r.stages)}};

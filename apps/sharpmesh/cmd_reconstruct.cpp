@@ -13,7 +13,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
   nlohmann::json gaps = nlohmann::json::array();
   for (const UncoveredGap& g : m.uncovered)
     gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", length_json(g.gap, diagonal)},
-                    {"refused_by_mesher", g.refused_by_mesher}});
+                    {"refused_by_mesher", g.refused_by_mesher}, {"too_close", g.too_close}});
   return {{"polylines", r.features.graph.polylines.size()},
           {"protecting_balls", m.protecting_balls},
           {"enlarged_balls", m.enlarged_balls},

@@ -77,6 +77,7 @@ struct FeatureResult {
   std::size_t edge_points = 0, corner_points = 0;
   std::size_t unsharpened_edge_points = 0;  ///< edge points dropped: no two patches around them
   std::size_t clusters = 0, pruned_clusters = 0;
+  std::size_t off_data_polylines = 0;  ///< traced polylines dropped: their median vertex lies off the data
   std::vector<StageTiming> stages;   ///< detection, clustering, polylines and junctions (Table 7.1)
 };
 

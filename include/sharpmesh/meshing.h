@@ -39,6 +39,9 @@ struct FeatureProtection {
   bool adapt_to_gap = true;
   double gap_margin = 1.5;
   double max_ball_radius = 0.0;  ///< data units; 0: 3 x ball_radius
+  /// Polylines closer than this to a longer one are not protected
+  /// (drop_close_polylines); data units, 0: all are.
+  double min_separation = 0.0;
 };
 
 /// A stretch of a protected polyline that the output mesh does not follow
@@ -50,7 +53,15 @@ struct UncoveredGap {
   /// Left out because CGAL's Mesh_3 failed next to it (close or tangled
   /// features; CGAL issue #9102), and the refinement was run again without it.
   bool refused_by_mesher = false;
+  /// Left out because it runs closer than FeatureProtection::min_separation
+  /// to a longer polyline (balls that thin miss the surface).
+  bool too_close = false;
 };
+
+/// Removes, shortest first, each polyline whose interior (away from its
+/// ends) lies for more than half within `min_separation` of another kept
+/// polyline; each removed one is reported. Returns the number removed.
+std::size_t drop_close_polylines(std::vector<Polyline>& polylines, double min_separation, std::vector<UncoveredGap>& dropped);
 
 struct ImplicitMeshingOptions {
   RefinementCriteria criteria;

@@ -42,6 +42,7 @@ py::object make_features(const FeatureResult& r) {
   report["corner_points"] = r.corner_points;
   report["clusters"] = r.clusters;
   report["pruned_clusters"] = r.pruned_clusters;
+  report["off_data_polylines"] = r.off_data_polylines;
   report["polylines"] = r.graph.polylines.size();
   report["junctions"] = r.graph.junctions.size();
   report["stages"] = stages_dict(r.stages);

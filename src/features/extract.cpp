@@ -226,6 +226,23 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
       input_index->nearest(p, 1, ids, d2);
       return std::sqrt(d2[0]);
     };
+    // A polyline that runs off the data (its median vertex farther than 1.1
+    // spacings from every point, the sharpening's own bound) is a chord, not
+    // an edge: on holes a few spacings across the plane fits cut inside the
+    // rim (anchor 50k: four rims 1.7 spacings off; their protecting balls
+    // shrank to a third of their size and 64% of the protected segments were
+    // not mesh edges).
+    const double max_offset = 1.1 * result.average_spacing + 2 * result.noise_estimate;
+    const std::size_t traced_count = traced.size();
+    traced.erase(std::remove_if(traced.begin(), traced.end(),
+                                [&](const detail::TracedPolyline& t) {
+                                  std::vector<double> offsets;
+                                  for (const Vec3& v : t.vertices) offsets.push_back(distance_to_data(v));
+                                  std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+                                  return offsets[offsets.size() / 2] > max_offset;
+                                }),
+                 traced.end());
+    result.off_data_polylines = traced_count - traced.size();
     result.graph = detail::connect_polylines(std::move(traced), options.junction_factor, distance_to_data,
                                              std::max(2 * result.average_spacing, 3 * result.noise_estimate));
     report_progress(progress, "polylines", 1.0);

@@ -88,6 +88,7 @@ std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Pol
     }
     const bool closed = points.size() > 1 && points.front() == points.back();
     if (points.size() < (closed ? 4u : 2u)) continue;
+
     std::vector<detail::Point3> reversed(points.rbegin(), points.rend());
     if (std::find(out.begin(), out.end(), points) != out.end() || std::find(out.begin(), out.end(), reversed) != out.end()) continue;
     out.push_back(std::move(points));
@@ -578,6 +579,7 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   constexpr int kMaxRetries = 4;
   ImplicitMeshingOptions attempt = options;
   std::vector<UncoveredGap> dropped;
+  drop_close_polylines(attempt.features.polylines, options.features.min_separation, dropped);
   const double reach = 2 * (options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius);
   auto drop_all = [&] {
     Vec3 far{INFINITY, INFINITY, INFINITY};

@@ -290,6 +290,9 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
   meshing.features.polylines = result.features.graph.polylines;
   meshing.features.ball_radius = options.ball_radius * result.d_prime;
   meshing.features.adapt_to_gap = options.adapt_balls_to_gap;
+  // Two polylines (or two stretches of one) closer than two spacings get balls
+  // too thin to reach the surface: the shorter is left unprotected.
+  meshing.features.min_separation = 2 * result.average_spacing;
   if (options.data_seed_spacing > 0) {
     StageTimer timer(result.stages, "seeds");
     add_data_seeds(oriented, options.data_seed_spacing * result.d_prime, result, meshing);

@@ -120,3 +120,39 @@ TEST(BoundaryClip, CutsTheOverhangAlongTheData) {
   EXPECT_EQ(clip_boundary_to_points(tetra, {{0, 0, 0}}, 0.01), 0u);
   EXPECT_EQ(tetra.faces.size(), 4u);
 }
+
+// Two parallel polylines a separation apart: the shorter is dropped below
+// it, both kept above; an L meeting at a shared corner is kept; a trace
+// that doubles back on itself is dropped.
+TEST(FeatureSeparation, DropsTheShorterOfTwoCloseCurvesAndSelfCloseTraces) {
+  auto line = [](double y, double length) {
+    Polyline p;
+    for (int i = 0; i <= 20; ++i) p.push_back({length * i / 20.0, y, 0});
+    return p;
+  };
+  std::vector<UncoveredGap> dropped;
+  std::vector<Polyline> close = {line(0, 10), line(1, 8)};
+  EXPECT_EQ(drop_close_polylines(close, 2.0, dropped), 1u);
+  ASSERT_EQ(close.size(), 1u);
+  EXPECT_DOUBLE_EQ(close[0].back()[0], 10.0);  // the longer stays
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_TRUE(dropped[0].too_close);
+  EXPECT_NEAR(dropped[0].length, 8.0, 1e-9);
+
+  std::vector<Polyline> apart = {line(0, 10), line(3, 8)};
+  EXPECT_EQ(drop_close_polylines(apart, 2.0, dropped), 0u);
+  EXPECT_EQ(apart.size(), 2u);
+
+  Polyline up;
+  for (int i = 0; i <= 20; ++i) up.push_back({0, 0.5 * i, 0});
+  std::vector<Polyline> corner = {line(0, 10), up};
+  EXPECT_EQ(drop_close_polylines(corner, 2.0, dropped), 0u);
+
+  Polyline hairpin = line(0, 10);  // out along y = 0, back along y = 0.8
+  for (int i = 20; i >= 0; --i) hairpin.push_back({10.0 * i / 20.0, 0.8, 0});
+  std::vector<Polyline> folded = {hairpin, up};
+  for (Vec3& p : folded[1]) p[0] += 30;  // far away
+  EXPECT_EQ(drop_close_polylines(folded, 2.0, dropped), 1u);
+  ASSERT_EQ(folded.size(), 1u);
+  EXPECT_DOUBLE_EQ(folded[0][0][0], 30.0);
+}
