@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sharpmesh/progress.h"
@@ -43,6 +44,10 @@ struct TopologyReport {
   bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0 && orientable; }
 };
 TopologyReport check_topology(const SurfaceMesh& mesh, bool test_self_intersections = true);
+
+/// The pairs of faces (indices into mesh.faces, smaller first, sorted) that intersect other
+/// than along a shared edge or vertex; degenerate faces are left out.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_faces(const SurfaceMesh& mesh);
 
 /// Distances from `mesh` to `reference`, both ways, from uniform samples of
 /// each surface (plus their vertices). All distances in the data's units;

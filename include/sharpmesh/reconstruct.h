@@ -93,6 +93,7 @@ struct ReconstructResult {
   std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
   std::size_t thin_points = 0;         ///< input points where the solid or a gap is thinner than the seed spacing / 2
   std::size_t flattened_vertices = 0;  ///< moved onto the face planes next to protected edges
+  std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect
   std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
   std::vector<StageTiming> stages;

@@ -14,17 +14,29 @@
 namespace sharpmesh {
 namespace {
 
-bool has_self_intersections(const SurfaceMesh& mesh) {
+/// The mesh as a CGAL Surface_mesh whose face k is the k-th non-degenerate
+/// triangle; `face_of[k]` is its index in mesh.faces.
+CGAL::Surface_mesh<detail::Point3> to_surface_mesh(const SurfaceMesh& mesh, std::vector<std::uint32_t>& face_of) {
   namespace PMP = CGAL::Polygon_mesh_processing;
   std::vector<detail::Point3> points = detail::to_cgal(mesh.vertices);
   std::vector<std::vector<std::size_t>> polygons;
   polygons.reserve(mesh.faces.size());
-  for (const Triangle& f : mesh.faces)
-    if (f[0] != f[1] && f[1] != f[2] && f[0] != f[2]) polygons.push_back({f[0], f[1], f[2]});
+  face_of.clear();
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+    const Triangle& t = mesh.faces[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    polygons.push_back({t[0], t[1], t[2]});
+    face_of.push_back(f);
+  }
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) PMP::orient_polygon_soup(points, polygons);
   CGAL::Surface_mesh<detail::Point3> sm;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
-  return PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(sm);
+  return sm;
+}
+
+bool has_self_intersections(const SurfaceMesh& mesh) {
+  std::vector<std::uint32_t> face_of;
+  return CGAL::Polygon_mesh_processing::does_self_intersect<CGAL::Parallel_if_available_tag>(to_surface_mesh(mesh, face_of));
 }
 
 }  // namespace
@@ -76,6 +88,22 @@ TopologyReport check_topology(const SurfaceMesh& mesh, bool test_self_intersecti
   report.components = roots.size();
   if (test_self_intersections && !mesh.faces.empty()) report.self_intersecting = has_self_intersections(mesh);
   return report;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_faces(const SurfaceMesh& mesh) {
+  std::vector<std::uint32_t> face_of;
+  const CGAL::Surface_mesh<detail::Point3> sm = to_surface_mesh(mesh, face_of);
+  using Face = CGAL::Surface_mesh<detail::Point3>::Face_index;
+  std::vector<std::pair<Face, Face>> pairs;
+  // Orienting a non-manifold soup can duplicate vertices but keeps faces in
+  // order; with the same face count, face k is face_of[k].
+  if (sm.number_of_faces() != face_of.size()) return {};
+  CGAL::Polygon_mesh_processing::self_intersections<CGAL::Parallel_if_available_tag>(sm, std::back_inserter(pairs));
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  out.reserve(pairs.size());
+  for (const auto& [a, b] : pairs) out.push_back(std::minmax(face_of[a.idx()], face_of[b.idx()]));
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 }  // namespace sharpmesh

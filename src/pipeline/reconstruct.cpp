@@ -8,6 +8,7 @@
 
 #include "core/recentering.h"
 #include "sharpmesh/errors.h"
+#include "sharpmesh/eval.h"
 #include "sharpmesh/implicit.h"
 
 namespace sharpmesh {
@@ -313,8 +314,22 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     flattening.radius = std::min(options.ball_radius * result.d_prime, 3 * result.average_spacing);
     flattening.max_move = std::min(0.25 * result.d_prime, 2 * result.average_spacing);
     flattening.max_residual = 0.15 * result.d_prime;
+    const std::vector<Vec3> before = result.mesh.vertices;
     result.flattened_vertices =
         flatten_next_to_features(result.mesh, result.meshing.feature_edges, oriented.points, oriented.normals, flattening);
+    // A move can still push a facet through a neighbour (couplingdown 50k at
+    // delta 8 and 32 self-intersected): the moved vertices of intersecting
+    // facets go back, until none intersect or none of theirs moved.
+    for (int round = 0; round < 4 && result.flattened_vertices > 0; ++round) {
+      std::size_t restored = 0;
+      for (const auto& [a, b] : self_intersecting_faces(result.mesh))
+        for (std::uint32_t f : {a, b})
+          for (std::uint32_t v : result.mesh.faces[f])
+            if (result.mesh.vertices[v] != before[v]) result.mesh.vertices[v] = before[v], ++restored;
+      if (restored == 0) break;
+      result.flattened_vertices -= std::min(result.flattened_vertices, restored);
+      result.unflattened_vertices += restored;
+    }
   }
   if (options.trim_distance > 0) {
     StageTimer timer(result.stages, "trim");

@@ -82,6 +82,13 @@ TEST(Topology, ClosedManifoldCubeAndItsDefects) {
   for (Vec3 v : other.vertices) crossing.vertices.push_back(v + Vec3{0.3, 0.2, 0.1});
   for (Triangle f : other.faces) crossing.faces.push_back({f[0] + 8, f[1] + 8, f[2] + 8});
   EXPECT_TRUE(check_topology(crossing).self_intersecting);
+  EXPECT_TRUE(self_intersecting_faces(cube).empty());
+  const auto pairs = self_intersecting_faces(crossing);
+  ASSERT_FALSE(pairs.empty());
+  for (const auto& [a, b] : pairs) {  // always one face of each cube
+    EXPECT_LT(a, 12u);
+    EXPECT_GE(b, 12u);
+  }
 
   // Flipping one face breaks consistent orientation.
   SurfaceMesh flipped = cube;
