@@ -514,6 +514,20 @@ bool failure_point(const std::string& message, Vec3& p) {
   return std::sscanf(message.c_str() + open, "(%lf %lf %lf %lf)", &p[0], &p[1], &p[2], &w) == 4;
 }
 
+/// The whole of a polyline as an unprotected stretch.
+UncoveredGap refused(const Polyline& line) {
+  UncoveredGap gap;
+  Vec3 sum{0, 0, 0};
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    sum = sum + line[i];
+    if (i > 0) gap.length += distance(line[i - 1], line[i]);
+  }
+  gap.center = (1.0 / static_cast<double>(std::max<std::size_t>(line.size(), 1))) * sum;
+  gap.gap = -1;
+  gap.refused_by_mesher = true;
+  return gap;
+}
+
 /// Removes every polyline that passes within `reach` of p, and reports
 /// each. (Cutting out only the stretch near p left two new ends there, and
 /// dropping only the nearest polyline left its neighbours: on couplingdown
@@ -524,20 +538,8 @@ bool drop_protection_near(std::vector<Polyline>& polylines, const Vec3& p, doubl
   for (Polyline& line : polylines) {
     bool near = false;
     for (std::size_t i = 0; i + 1 < line.size() && !near; ++i) near = distance_to_segment(p, line[i], line[i + 1]) <= reach;
-    if (!near) {
-      kept.push_back(std::move(line));
-      continue;
-    }
-    UncoveredGap gap;
-    Vec3 sum{0, 0, 0};
-    for (std::size_t i = 0; i < line.size(); ++i) {
-      sum = sum + line[i];
-      if (i > 0) gap.length += distance(line[i - 1], line[i]);
-    }
-    gap.center = (1.0 / static_cast<double>(line.size())) * sum;
-    gap.gap = -1;
-    gap.refused_by_mesher = true;
-    dropped.push_back(gap);
+    if (near) dropped.push_back(refused(line));
+    else kept.push_back(std::move(line));
   }
   const bool any = kept.size() < polylines.size();
   polylines = std::move(kept);
@@ -582,8 +584,8 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   drop_close_polylines(attempt.features.polylines, options.features.min_separation, dropped);
   const double reach = 2 * (options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius);
   auto drop_all = [&] {
-    Vec3 far{INFINITY, INFINITY, INFINITY};
-    drop_protection_near(attempt.features.polylines, far, INFINITY, dropped);
+    for (const Polyline& line : attempt.features.polylines) dropped.push_back(refused(line));
+    attempt.features.polylines.clear();
   };
   for (int retries = 0;; ++retries) {
     std::string what;
