@@ -80,12 +80,20 @@ Command add_stereo(CLI::App& app) {
   sub->add_flag("--no-photo", o->no_photo, "Skip the photo-consistency filter");
   sub->add_flag("--keep-occluded-tracks", o->keep_occluded,
                 "Keep the triangles of tracks hidden behind the soup from most of their views (the thesis does)");
+  auto& fill = o->stereo.fill;
+  sub->add_flag("!--no-fill", fill.enabled,
+                "Mesh the filtered soup alone (the thesis); default: where the soup is empty, fill it with the tracks' Poisson surface (beyond the thesis, 6.6)");
+  sub->add_option("--fill-gap", fill.gap, "Fill only farther than this from every soup triangle, size bounds l")->capture_default_str();
+  sub->add_option("--fill-support", fill.support, "Fill only this close to a track, average track spacings")->capture_default_str();
+  sub->add_option("--fill-resolution", fill.resolution, "Protecting-ball spacing d' of the tracks' surface, size bounds l")->capture_default_str();
+  sub->add_option("--fill-crossings", fill.max_crossings, "Remove fill facets crossed by more lines of sight")->capture_default_str();
   auto& m = o->stereo.meshing;
   sub->add_option("--angle", m.angle, "alpha: minimum facet angle, degrees (6.2.1)")->capture_default_str();
   sub->add_option("--size", m.size, "l: maximum surface Delaunay ball radius, fraction of the half diagonal (6.5)")->capture_default_str();
   sub->add_option("--distance", m.distance, "d: maximum facet-to-surface distance, fraction of the half diagonal (6.5)")->capture_default_str();
   sub->add_option("--max-vertices", m.max_vertices, "Stop with an error past this many mesh vertices")->capture_default_str();
   sub->add_option("--seed", m.seed, "Seed of the refinement's initial points")->capture_default_str();
+  sub->add_option("--seed-cell", m.seed_cell, "Also one initial point per occupied cell of a grid of this step, size bounds l")->capture_default_str();
   sub->add_option("--initial-points", m.initial_points, "Initial points of the refinement (centroids of random soup triangles)")->capture_default_str();
   sub->add_option("--max-hole", o->stereo.max_hole,
                   "Fill the mesh's holes whose boundary is shorter than this, fraction of the half diagonal; 0: off (beyond the thesis, its remedy of 6.6)")
@@ -137,6 +145,15 @@ Command add_stereo(CLI::App& app) {
                     fs.removed_occluded, fs.occluded_tracks,
                     fs.removed_photo, fs.photo_tested, fs.output);
       printer.message(line);
+      if (o->stereo.fill.enabled) {
+        const SoupFillStats& fl = result.fill;
+        if (fl.skipped.empty())
+          std::snprintf(line, sizeof line, "  fill: tracks' surface of %zu facets from %zu tracks, -%zu near the soup, -%zu far from tracks, -%zu visibility -> %zu added",
+                        fl.surface_facets, fl.tracks, fl.removed_near_soup, fl.removed_far, fl.removed_visibility, fl.added);
+        else
+          std::snprintf(line, sizeof line, "  fill: none (%s)", fl.skipped.c_str());
+        printer.message(line);
+      }
       if (o->stereo.max_hole > 0) {
         std::snprintf(line, sizeof line, "  holes: %zu boundary cycles, %zu filled with %zu facets (%zu not faired, %zu failed)",
                       result.holes.holes, result.holes.filled, result.holes.added_facets, result.holes.unfaired, result.holes.failed);
@@ -172,7 +189,8 @@ Command add_stereo(CLI::App& app) {
           {"photo_consistency", so.filters.photo_consistency},
           {"remove_occluded_tracks", so.filters.remove_occluded_tracks}, {"angle_deg", so.meshing.angle},
           {"size", so.meshing.size}, {"distance", so.meshing.distance}, {"seed", so.meshing.seed},
-          {"max_hole", so.max_hole}}},
+          {"fill", so.fill.enabled}, {"fill_gap_l", so.fill.gap}, {"fill_support_spacings", so.fill.support},
+          {"fill_max_crossings", so.fill.max_crossings}, {"max_hole", so.max_hole}}},
         {"derived", {{"half_diagonal", half_diagonal}}},
         {"counts",
          {{"views", model.cameras.size()},
@@ -185,6 +203,10 @@ Command add_stereo(CLI::App& app) {
                     {"occluded_tracks", fs.occluded_tracks}, {"removed_occluded", fs.removed_occluded},
                     {"removed_anamorphic", fs.removed_anamorphic}, {"photo_tested", fs.photo_tested},
                     {"removed_photo", fs.removed_photo}, {"kept", fs.output}}},
+          {"fill", {{"tracks", result.fill.tracks}, {"surface_facets", result.fill.surface_facets},
+                    {"removed_near_soup", result.fill.removed_near_soup}, {"removed_far", result.fill.removed_far},
+                    {"removed_visibility", result.fill.removed_visibility}, {"added", result.fill.added},
+                    {"skipped", result.fill.skipped}}},
           {"mesh", {{"vertices", result.meshing.mesh.vertices.size()}, {"facets", result.meshing.mesh.faces.size()},
                     {"refinement_steps", result.meshing.steps}}},
           {"holes", {{"boundary_cycles", result.holes.holes}, {"filled", result.holes.filled},

@@ -63,6 +63,10 @@ struct ReconstructOptions {
   NormalEstimationOptions normals;       ///< used when the input has no normals
   NormalOrientationOptions orientation;  ///< used when the input has no normals
   bool recompute_normals = false;        ///< ignore normals present in the input
+  /// Compare the input's normals with an MST orientation and re-orient them
+  /// when they disagree in sign (false: their signs come from elsewhere,
+  /// e.g. the cameras that saw each point, and are used as given).
+  bool check_input_normals = true;
   std::size_t max_facets = 5'000'000;
   std::uint32_t seed = 0;
   void check(std::size_t n) const;

@@ -204,7 +204,8 @@ struct SoupMeshingOptions {
   double size = 0.01;       ///< l: bound on the surface Delaunay ball radius (6.5: 0.01 and 0.035)
   double distance = 0.002;  ///< d (6.5: 0.002 and 0.01)
   int initial_points = 1000;  ///< centroids of random soup triangles
-  bool seed_cells = true;     ///< also one seed per occupied cell of a grid of step 4l
+  bool seed_cells = true;     ///< also one seed per occupied cell of a grid of step seed_cell x l
+  double seed_cell = 4.0;
   std::size_t max_vertices = 2'000'000;  ///< stop with an error past this many vertices
   std::uint32_t seed = 0;
   void check() const;
@@ -225,6 +226,51 @@ SoupMeshingResult mesh_soup(const TriangleSoup& soup, const SoupMeshingOptions& 
 /// soup; false when there is none.
 bool soup_segment_intersection(const TriangleSoup& soup, const Vec3& a, const Vec3& b, Vec3& point);
 
+// ---- Beyond the thesis (6.6): the soup filled where it is empty ----------
+
+/// The filtered soup leaves holes where tracks exist but their triangles were
+/// removed (far ground seen at grazing angles, parts seen by few views).
+/// There, a Poisson surface of the tracks, with normals towards their
+/// cameras, is meshed, cut to the neighbourhood of the tracks, and cleared
+/// of every facet a line of sight crosses (the visibility constraint of
+/// 6.3.2); its facets join the soup before meshing, so the mesher's oracle
+/// also answers where the soup has nothing. Tracks hidden behind the soup
+/// from most of their views are left out of the surface. Measured in
+/// docs/stereo.md: keeping the facets next to the soup too (gap 0) closes
+/// the rim the refinement loses around each hole of the soup.
+struct SoupFillOptions {
+  bool enabled = true;
+  /// Fill only farther than this from every soup triangle, in units of the
+  /// mesher's size bound l (0: everywhere the tracks' surface is visibility-consistent).
+  double gap = 0.0;
+  /// Facets farther than this from every track are dropped, average track
+  /// spacings (farther, Poisson's sheets in open space, which no line of
+  /// sight can refute, cost accuracy: docs/stereo.md).
+  double support = 3.0;
+  /// A facet crossed by more lines of sight than this is removed (t3 of 6.3.2).
+  int max_crossings = 1;
+  /// Protecting-ball spacing d' of the tracks' surface (7.3.2), in units of
+  /// l: its facets are about 2 d' long.
+  double resolution = 2.0;
+  void check() const;
+};
+
+struct SoupFillStats {
+  std::size_t tracks = 0;             ///< tracks the surface was fitted to
+  std::size_t surface_facets = 0;     ///< facets of the tracks' meshed surface
+  std::size_t removed_near_soup = 0;  ///< where the soup already is
+  std::size_t removed_far = 0;        ///< farther than `support` from the tracks
+  std::size_t removed_visibility = 0;
+  std::size_t added = 0;              ///< facets added to the soup
+  std::string skipped;                ///< why no fill was attempted (empty: it ran)
+};
+
+/// Adds to `soup` the facets of the tracks' surface where it is empty (see
+/// SoupFillOptions). `size` is the mesher's l in scene units, `sight_margin`
+/// as SoupFilterOptions::sight_margin.
+SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model, const SoupFillOptions& options,
+                                    double size, double sight_margin, const Progress& progress = {});
+
 // ---- The pipeline ---------------------------------------------------------
 
 struct StereoReconstructionOptions {
@@ -232,6 +278,7 @@ struct StereoReconstructionOptions {
   TrackPhotoOptions track_photo;
   DepthMapOptions depth_maps;
   SoupFilterOptions filters;
+  SoupFillOptions fill;
   SoupMeshingOptions meshing;
   /// Beyond the thesis (its remedy in 6.6): holes of the mesh whose boundary
   /// is shorter than this are filled, fraction of the half diagonal; 0: off.
@@ -247,7 +294,8 @@ struct StereoReconstruction {
   std::size_t contour_tracks = 0;      ///< ctracks over all images
   std::size_t contour_edges = 0;       ///< constrained edges over all images
   SoupFilterStats filters;
-  TriangleSoup soup;                   ///< filtered soup
+  TriangleSoup soup;                   ///< filtered soup (and its fill)
+  SoupFillStats fill;
   SoupMeshingResult meshing;
   HoleFillingStats holes;
   /// Wall time and memory of: tracks (6.3.1), depth maps, soup filters, meshing.

@@ -37,15 +37,39 @@ class PoissonSurface final : public ImplicitSurface {
     return function_.compute_implicit_function(solver);
   }
   const std::vector<PointWithNormal>& samples() const { return samples_; }
-  double value(const Vec3& p) const override { return function_(detail::to_cgal(p)); }
+  double value(const Vec3& p) const override { return sign_ * function_(detail::to_cgal(p)); }
+  /// CGAL orients the function by an inner point it finds itself; on an open
+  /// scene (a street seen from one side) that point can lie outside and the
+  /// whole function comes out inverted against consistent normals. Flipped
+  /// back here, with an inner point taken behind a sample.
+  bool flip() {
+    sign_ = -sign_;
+    has_inside_ = false;
+    if (sign_ > 0) return true;
+    const double h = 1e-3 * bounding_radius();
+    const std::size_t stride = std::max<std::size_t>(1, samples_.size() / 500);
+    for (std::size_t i = 0; i < samples_.size(); i += stride) {
+      Vec3 n = detail::from_cgal(samples_[i].second);
+      const Vec3 q = detail::from_cgal(samples_[i].first) - (h / norm(n)) * n;
+      if (value(q) < 0) {
+        inside_ = q;
+        has_inside_ = true;
+        return true;
+      }
+    }
+    return false;
+  }
   Vec3 bounding_center() const override { return detail::from_cgal(function_.bounding_sphere().center()); }
   double bounding_radius() const override { return std::sqrt(function_.bounding_sphere().squared_radius()); }
-  Vec3 inside_point() const override { return detail::from_cgal(function_.get_inner_point()); }
+  Vec3 inside_point() const override { return has_inside_ ? inside_ : detail::from_cgal(function_.get_inner_point()); }
   std::size_t sample_count() const override { return samples_.size(); }
 
  private:
   std::vector<PointWithNormal> samples_;
   Function function_;
+  double sign_ = 1;
+  Vec3 inside_{0, 0, 0};
+  bool has_inside_ = false;
 };
 
 /// True when no four samples span a volume (exact predicates).
@@ -119,17 +143,28 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   // bounding radius (1e-5 is not enough), keeping the most consistent
   // function. Partly inconsistent normals also lower the agreement; jitter
   // does not help them.
-  double agreement = normal_agreement(*surface);
+  // A function that disagrees with nearly all normals is inverted as a whole
+  // (see flip), not inconsistent.
+  auto agreement_of = [](PoissonSurface& f) {
+    const double a = normal_agreement(f);
+    if (!(a < 0.1) || !f.flip()) return a;
+    const double flipped = normal_agreement(f);
+    if (flipped >= 0.95) return flipped;
+    f.flip();  // not a clean inversion: left as it was
+    return a;
+  };
+  double agreement = agreement_of(*surface);
   for (double jitter : {1e-4, 1e-3}) {
     if (agreement >= 0.75) break;
     auto retry = std::make_unique<PoissonSurface>(jittered(samples, jitter * surface->bounding_radius()));
     if (!retry->solve()) continue;
-    const double retry_agreement = normal_agreement(*retry);
+    const double retry_agreement = agreement_of(*retry);
     if (retry_agreement > agreement) std::tie(surface, agreement) = std::make_pair(std::move(retry), retry_agreement);
   }
   if (diagnostics) diagnostics->normal_agreement = agreement;
   if (agreement < 0.5)
-    throw NumericalFailure("Poisson reconstruction: the implicit function disagrees with most normals (inconsistent normals, or a degenerate point set)");
+    throw NumericalFailure("Poisson reconstruction: the implicit function disagrees with most normals (grows along " +
+                           format_number(std::round(1000 * agreement) / 10) + "% of them; inconsistent normals, or a degenerate point set)");
   report_progress(progress, "poisson", 1.0);
   return surface;
 }

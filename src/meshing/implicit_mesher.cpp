@@ -17,6 +17,7 @@
 #include <CGAL/facets_in_complex_3_to_triangle_mesh.h>
 
 #include <algorithm>
+#include <random>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -415,6 +416,23 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
                           format_number(options.criteria.edge_length) + " on a surface of radius " + format_number(radius) + ")");
 
   const detail::Point3 center = detail::to_cgal(surface.bounding_center());
+  // CGAL's initial points are intersections of random segments in the
+  // domain ball with the surface, drawn until enough are found: when the
+  // function has one sign throughout the ball, that loop never ends (a flat
+  // open cloud's Poisson function). Refused here.
+  {
+    std::mt19937_64 generator(options.seed);
+    std::uniform_real_distribution<double> coordinate(-1, 1);
+    int negative = 0, positive = 0;
+    for (int i = 0; i < 4000 && (negative < 3 || positive < 3); ++i) {
+      const Vec3 d{coordinate(generator), coordinate(generator), coordinate(generator)};
+      if (norm(d) > 1) continue;
+      (surface.value(surface.bounding_center() + domain_radius * d) < 0 ? negative : positive) += 1;
+    }
+    if (negative < 3 || positive < 3)
+      throw NumericalFailure("the implicit function has one sign throughout its bounding sphere: there is no surface to mesh "
+                             "(a flat or degenerate cloud?)");
+  }
   std::function<double(const detail::Point3&)> function = [&surface](const detail::Point3& p) {
     return surface.value(detail::from_cgal(p));
   };

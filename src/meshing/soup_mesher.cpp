@@ -156,6 +156,7 @@ void SoupMeshingOptions::check() const {
   if (size < 1e-4 || distance < 1e-5)
     throw InvalidArgument("the size and distance bounds are too small (l >= 1e-4, d >= 1e-5 half diagonals): the mesh would have billions of facets");
   if (initial_points < 3) throw InvalidArgument("at least 3 initial points are needed");
+  if (!(seed_cell >= 0.25 && seed_cell <= 1000)) throw InvalidArgument("the seed cell must be in [0.25, 1000] size bounds l, got " + format_number(seed_cell));
   if (max_vertices < 4) throw InvalidArgument("the vertex limit must be at least 4");
 }
 
@@ -189,7 +190,7 @@ SoupMeshingResult mesh_soup(const TriangleSoup& soup, const SoupMeshingOptions& 
   // of a seed (random seeds alone missed patches of far ground: 2 points of
   // completeness at 2% on a fused-points scene).
   if (options.seed_cells) {
-    const double cell = 4 * options.size * half_diagonal;
+    const double cell = options.seed_cell * options.size * half_diagonal;
     const Vec3 origin = bounding_box(used).min;
     std::unordered_set<std::uint64_t> occupied;
     for (const Triangle3& t : data->triangles) {

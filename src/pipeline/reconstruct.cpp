@@ -170,7 +170,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
   ReconstructResult result;
   PointSet checked;
   InputNormals input_normals = InputNormals::Used;
-  if (given.has_normals() && !options.recompute_normals) {
+  if (given.has_normals() && !options.recompute_normals && options.check_input_normals) {
     StageTimer timer(result.stages, "normal check");
     checked = given;
     input_normals = check_input_normals(checked, options, result.input_normal_agreement, progress);

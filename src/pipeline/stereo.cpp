@@ -13,6 +13,7 @@ void StereoReconstructionOptions::check() const {
   track_photo.check();
   depth_maps.check();
   filters.check();
+  fill.check();
   meshing.check();
   if (!(max_hole >= 0 && max_hole <= 10)) throw InvalidArgument("the largest hole to fill must be in [0, 10] half diagonals, got " + format_number(max_hole));
 }
@@ -65,6 +66,18 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
   }
   if (result.soup.faces.empty()) throw NumericalFailure("every soup triangle was filtered out: nothing to mesh");
 
+  {
+    StageTimer timer(result.stages, "soup fill");
+    double half_diagonal = 0;
+    {
+      std::vector<Vec3> used;
+      for (const Triangle& f : result.soup.faces)
+        for (std::uint32_t v : f) used.push_back(result.soup.vertices[v]);
+      half_diagonal = 0.5 * bounding_box(used).diagonal();
+    }
+    result.fill = fill_soup_from_tracks(result.soup, model, options.fill, options.meshing.size * half_diagonal,
+                                        options.filters.sight_margin, progress);
+  }
   {
     StageTimer timer(result.stages, "meshing");
     result.meshing = mesh_soup(result.soup, options.meshing, progress);

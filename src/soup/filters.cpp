@@ -34,10 +34,12 @@ SightCrossings count_sight_crossings(const TriangleSoup& soup, const StereoModel
   const detail::RayCaster caster(soup);
   std::vector<Vec3> centers;
   for (const Camera& c : model.cameras) centers.push_back(c.center());
-  // Faces incident to each track: a line of sight may end on them.
+  // Faces incident to each track: a line of sight may end on them (vertices
+  // past the tracks are not tracks: the soup's fill, 6.6).
   std::vector<std::vector<std::uint32_t>> incident(model.tracks.size());
   for (std::uint32_t f = 0; f < soup.faces.size(); ++f)
-    for (std::uint32_t v : soup.faces[f]) incident[v].push_back(f);
+    for (std::uint32_t v : soup.faces[f])
+      if (v < incident.size()) incident[v].push_back(f);
   const std::size_t n = model.tracks.size();
   const std::size_t chunk = 8192;
   for (std::size_t begin = 0; begin < n; begin += chunk) {

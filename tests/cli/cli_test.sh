@@ -174,12 +174,19 @@ c = r["counts"]
 assert c["tracks"]["input"] > c["tracks"]["kept"] > 1000, c["tracks"]
 assert c["soup"]["unique"] > c["soup"]["kept"] > 1000, c["soup"]
 assert c["mesh"]["facets"] > 1000, c["mesh"]
-assert [s["name"] for s in r["stages"]] == ["read", "tracks", "depth maps", "soup filters", "meshing", "write"], r["stages"]
+assert [s["name"] for s in r["stages"]] == ["read", "tracks", "depth maps", "soup filters", "soup fill", "meshing", "write"], r["stages"]
+f = c["fill"]
+assert f["skipped"] == "" and f["surface_facets"] > 0 and 0 < f["added"] <= f["surface_facets"] - f["removed_visibility"], f
 assert r["parameters"]["merge_distance"] == 0.001 and r["parameters"]["max_crossings"] == 5, r["parameters"]
 PY
     $bin eval-stereo m.ply --scene sc --samples 20000 --json e.json -q || fail "eval-stereo failed"
     python3 -c "import json; r=json.load(open('e.json'))['results'][0]; assert r['accuracy'][4] > 0.95 and r['completeness'][5] > 0.8, r" \
       || fail "inaccurate or incomplete stereo mesh"
+    # --no-fill: the thesis's soup alone, no fill stage, no more complete.
+    $bin stereo sc -o nofill.ply --no-fill --report rn.json -q || fail "stereo --no-fill failed"
+    $bin eval-stereo nofill.ply --scene sc --samples 20000 --json en.json -q || fail "eval-stereo failed"
+    python3 -c "import json; a=json.load(open('e.json'))['results'][0]; b=json.load(open('en.json'))['results'][0]; r=json.load(open('rn.json')); assert r['counts']['fill']['skipped'] == 'disabled' and b['completeness'][4] <= a['completeness'][4] + 0.005, (a['completeness'], b['completeness'])" \
+      || fail "--no-fill is not the soup alone"
     # A coarser mesh from the same soup: fewer facets.
     $bin stereo sc -o coarse.ply --size 0.035 --distance 0.01 --report rc.json -q || fail "coarse stereo failed"
     python3 -c "import json; a=json.load(open('r.json')); b=json.load(open('rc.json')); assert b['counts']['mesh']['facets'] < a['counts']['mesh']['facets'] / 3, (a['counts']['mesh'], b['counts']['mesh'])" \

@@ -301,6 +301,89 @@ TEST(SoupMeshing, EveryPatchOfTheSoupIsMeshedNotOnlyWhereRandomSeedsFall) {
   EXPECT_TRUE(std::count(random_only.begin(), random_only.end(), 0) > 0) << "random seeds found every small square: the test proves nothing";
 }
 
+TEST(SoupFill, AHoleOfTheSoupIsFilledFromTheTracksSurface) {
+  // Tracks on a gently curved sheet z = 10 + 0.3 sin(x) cos(y), seen by
+  // three cameras at z = 0; the soup over them has a hole of radius 1 at
+  // the centre. The fill puts the tracks' surface there.
+  StereoModel model;
+  model.cameras = {camera_at({0, 0, 0}), camera_at({0.5, 0, 0}), camera_at({0, 0.5, 0})};
+  const int n = 61;
+  auto height = [](double x, double y) { return 10 + 0.3 * std::sin(x) * std::cos(y); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = -3 + 0.1 * i, y = -3 + 0.1 * j;
+      model.tracks.push_back(track({x, y, height(x, y)}, {0, 1, 2}));
+    }
+  TriangleSoup soup;
+  for (const Track& t : model.tracks) soup.vertices.push_back(t.position);
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const auto v = static_cast<std::uint32_t>(j * n + i);
+      const double x = -3 + 0.1 * (i + 0.5), y = -3 + 0.1 * (j + 0.5);
+      if (x * x + y * y < 1) continue;
+      soup.faces.push_back({v, v + 1, static_cast<std::uint32_t>(v + n + 1)});
+      soup.faces.push_back({v, static_cast<std::uint32_t>(v + n + 1), static_cast<std::uint32_t>(v + n)});
+    }
+  Vec3 hit;
+  ASSERT_FALSE(soup_segment_intersection(soup, {0.2, 0.1, 5}, {0.2, 0.1, 15}, hit));
+  SoupFillOptions options;
+  TriangleSoup disabled = soup;
+  options.enabled = false;
+  EXPECT_EQ(fill_soup_from_tracks(disabled, model, options, 0.1, 1.0).added, 0u);
+  EXPECT_EQ(disabled.faces.size(), soup.faces.size());
+  options.enabled = true;
+  TriangleSoup filled = soup;
+  const SoupFillStats stats = fill_soup_from_tracks(filled, model, options, 0.1, 1.0);
+  EXPECT_TRUE(stats.skipped.empty()) << stats.skipped;
+  EXPECT_GT(stats.added, 0u);
+  ASSERT_TRUE(soup_segment_intersection(filled, {0.2, 0.1, 5}, {0.2, 0.1, 15}, hit));
+  EXPECT_NEAR(hit[2], height(0.2, 0.1), 0.05);
+  // With a gap of 2 l, nothing is added within 0.2 of the soup.
+  options.gap = 2;
+  TriangleSoup away = soup;
+  const SoupFillStats gapped = fill_soup_from_tracks(away, model, options, 0.1, 1.0);
+  EXPECT_GT(gapped.removed_near_soup, 0u);
+  EXPECT_LT(gapped.added, stats.added);
+  EXPECT_FALSE(soup_segment_intersection(away, {0.95, 0, 5}, {0.95, 0, 15}, hit)) << "0.05 inside the hole's rim";
+  options.support = -1;
+  EXPECT_THROW(fill_soup_from_tracks(away, model, options, 0.1, 1.0), InvalidArgument);
+}
+
+TEST(SoupFill, FacetsThatLinesOfSightCrossAreNotAdded) {
+  // Two sheets of tracks: a half sheet at z = 10 and a full one at z = 14
+  // behind it, all seen by the three cameras. Where the lines of sight to
+  // the far sheet cross the near one, the near one's surface is not added
+  // (6.3.2's visibility constraint on the fill); the far sheet's is.
+  StereoModel model;
+  model.cameras = {camera_at({0, 0, 0}), camera_at({0.5, 0, 0}), camera_at({0, 0.5, 0})};
+  const int n = 61;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = -3 + 0.1 * i, y = -3 + 0.1 * j, wobble = 0.01 * ((i * 7 + j * 3) % 5);
+      model.tracks.push_back(track({x, y, 14 + wobble}, {0, 1, 2}));
+      if (x < 0) model.tracks.push_back(track({x, y, 10 + wobble}, {0, 1, 2}));
+    }
+  TriangleSoup soup;
+  for (const Track& t : model.tracks) soup.vertices.push_back(t.position);
+  const auto token = static_cast<std::uint32_t>(soup.vertices.size());  // a token soup triangle, out of sight
+  soup.vertices.insert(soup.vertices.end(), {{50, 50, 50}, {51, 50, 50}, {50, 51, 50}});
+  soup.faces = {{token, token + 1, token + 2}};
+  const SoupFillStats stats = fill_soup_from_tracks(soup, model, {}, 0.1, 1.0);
+  EXPECT_TRUE(stats.skipped.empty()) << stats.skipped;
+  EXPECT_GT(stats.removed_visibility, 0u);
+  ASSERT_GT(stats.added, 100u);
+  // Lines of sight to the far sheet cross the near one where x > -2.1 and
+  // |y| < 2.1 (the far sheet seen through it, scaled by 10/14).
+  std::size_t near = 0, far = 0;
+  for (std::size_t f = 1; f < soup.faces.size(); ++f) {
+    const Vec3& v = soup.vertices[soup.faces[f][0]];
+    near += v[2] < 10.5 && v[0] > -1.9 && v[0] < -0.4 && std::abs(v[1]) < 1.9;  // away from its rim, where Poisson bends to the far sheet
+    far += v[2] > 12;
+  }
+  EXPECT_LT(near, stats.added / 50) << "the near sheet, seen through, is not added";
+  EXPECT_GT(far, stats.added / 2);
+}
+
 TEST(HoleFilling, ShortHolesAreClosedAndLongOnesKept) {
   SurfaceMesh sphere = test::sphere_mesh(3);
   ASSERT_EQ(count_boundary_edges(sphere), 0u);

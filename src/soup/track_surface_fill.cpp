@@ -1,0 +1,158 @@
+// Beyond the thesis (its limitation in 6.6): the filtered soup leaves holes
+// where tracks exist but their triangles were removed (far ground seen at
+// grazing angles, parts seen by two or three views). The soup is completed
+// with a Poisson surface of the tracks: normals by jet fitting, oriented
+// towards the cameras that saw each track, meshed by the Chapter 7 pipeline
+// without features, cut to the tracks' neighbourhood (and, with a positive
+// gap, to where the soup is empty), and cleared of every facet a line of
+// sight crosses.
+#include <algorithm>
+#include <cmath>
+
+#include "eval/triangle_distance.h"
+#include "sharpmesh/errors.h"
+#include "sharpmesh/pointset.h"
+#include "sharpmesh/reconstruct.h"
+#include "sharpmesh/stereo_reconstruct.h"
+
+namespace sharpmesh {
+
+void SoupFillOptions::check() const {
+  if (!(gap >= 0 && gap <= 100)) throw InvalidArgument("the fill gap must be in [0, 100] size bounds l, got " + format_number(gap));
+  if (!(support > 0 && support <= 100))
+    throw InvalidArgument("the fill support must be in (0, 100] average track spacings, got " + format_number(support));
+  if (max_crossings < 0) throw InvalidArgument("the fill's line-of-sight threshold must be >= 0");
+  if (!(resolution > 0 && resolution <= 100)) throw InvalidArgument("the fill resolution must be in (0, 100] size bounds l, got " + format_number(resolution));
+}
+
+namespace {
+
+/// Tracks hidden behind the soup from more than half of their views (as
+/// filter_soup's occluded tracks): outliers behind surfaces, left out.
+std::vector<bool> visible_tracks(const TriangleSoup& soup, const StereoModel& model, double margin, const Progress& progress) {
+  const SightCrossings crossings = count_sight_crossings(soup, model, margin, progress);
+  std::vector<bool> keep(model.tracks.size(), true);
+  for (std::size_t t = 0; t < model.tracks.size(); ++t) {
+    std::vector<std::uint32_t> blocked_views;
+    for (const auto& [view, face] : crossings.per_track[t]) blocked_views.push_back(view);
+    std::sort(blocked_views.begin(), blocked_views.end());
+    blocked_views.erase(std::unique(blocked_views.begin(), blocked_views.end()), blocked_views.end());
+    keep[t] = 2 * blocked_views.size() <= model.tracks[t].views.size();
+  }
+  return keep;
+}
+
+/// The tracks, one per cell of `cell`, with jet normals turned towards the
+/// mean centre of their views.
+PointSet oriented_tracks(const StereoModel& model, const std::vector<bool>& keep, double cell) {
+  PointSet points;
+  for (std::size_t t = 0; t < model.tracks.size(); ++t) {
+    if (!keep[t]) continue;
+    const Track& track = model.tracks[t];
+    Vec3 mean{0, 0, 0};
+    for (std::uint32_t v : track.views) mean = mean + model.cameras[v].center();
+    points.points.push_back(track.position);
+    points.normals.push_back((1.0 / static_cast<double>(track.views.size())) * mean - track.position);
+  }
+  grid_simplify(points, cell);  // the normals slot carries the direction to the cameras meanwhile
+  const std::vector<Vec3> towards = points.normals;
+  points.normals.clear();
+  if (points.size() < 50) return points;
+  estimate_normals(points);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (dot(points.normals[i], towards[i]) < 0) points.normals[i] = -1.0 * points.normals[i];
+  return points;
+}
+
+}  // namespace
+
+SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model, const SoupFillOptions& options,
+                                    double size, double sight_margin, const Progress& progress) {
+  options.check();
+  SoupFillStats stats;
+  if (!options.enabled) {
+    stats.skipped = "disabled";
+    return stats;
+  }
+  if (soup.faces.empty() || model.tracks.size() < 50) {
+    stats.skipped = "fewer than 50 tracks";
+    return stats;
+  }
+  PointSet all;
+  for (const Track& t : model.tracks) all.points.push_back(t.position);
+  const double spacing = average_spacing(all);
+  const std::vector<bool> keep = visible_tracks(soup, model, sight_margin * spacing, progress);
+  // The tracks' surface at d' = resolution x l; it only serves as the
+  // oracle's second answer, so tracks closer than d' / 4 are merged first.
+  const double d_prime = std::max(options.resolution * size, spacing);
+  PointSet tracks = oriented_tracks(model, keep, 0.25 * d_prime);
+  stats.tracks = tracks.size();
+  if (tracks.size() < 50) {
+    stats.skipped = "fewer than 50 visible tracks";
+    return stats;
+  }
+  ReconstructOptions surface;
+  surface.feature_mode = FeatureMode::None;
+  surface.check_input_normals = false;  // oriented by the cameras, which MST cannot improve
+  surface.delta = std::clamp(d_prime / average_spacing(tracks), 1.0, 16.0);
+  surface.trim_distance = std::max(0.1, options.support * spacing / d_prime);  // cut again below, from every track
+  SurfaceMesh fill;
+  try {
+    fill = reconstruct(tracks, surface, progress).mesh;
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {  // no surface through these tracks (flat, degenerate, Poisson failed): the soup alone
+    stats.skipped = std::string("the tracks' surface failed: ") + e.what();
+    return stats;
+  }
+  stats.surface_facets = fill.faces.size();
+  if (fill.faces.empty()) return stats;
+
+  // Keep the facets away from the soup and near the tracks.
+  if (options.gap > 0) {
+    const detail::TriangleDistance to_soup(soup);
+    std::vector<Vec3> centroids;
+    for (const Triangle& f : fill.faces)
+      centroids.push_back((1.0 / 3) * (fill.vertices[f[0]] + fill.vertices[f[1]] + fill.vertices[f[2]]));
+    const std::vector<double> soup_distance = to_soup.distances(centroids);
+    std::vector<Triangle> candidates;
+    for (std::size_t f = 0; f < fill.faces.size(); ++f) {
+      if (soup_distance[f] < options.gap * size) {
+        ++stats.removed_near_soup;
+        continue;
+      }
+      candidates.push_back(fill.faces[f]);
+    }
+    fill.faces = candidates;
+  }
+  stats.removed_far = trim_far_from_points(fill, all.points, options.support * spacing);
+
+  // Visibility (6.3.2): no line of sight may cross an invented facet.
+  TriangleSoup sight;
+  sight.vertices = soup.vertices;
+  const auto offset = static_cast<std::uint32_t>(sight.vertices.size());
+  sight.vertices.insert(sight.vertices.end(), fill.vertices.begin(), fill.vertices.end());
+  for (const Triangle& f : fill.faces) sight.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  const SightCrossings crossings = count_sight_crossings(sight, model, sight_margin * spacing, progress);
+  std::vector<std::uint32_t> index(fill.vertices.size(), UINT32_MAX);
+  for (std::size_t f = 0; f < fill.faces.size(); ++f) {
+    if (crossings.per_face[f] > static_cast<std::uint32_t>(options.max_crossings)) {
+      ++stats.removed_visibility;
+      continue;
+    }
+    Triangle added;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t& i = index[fill.faces[f][k]];
+      if (i == UINT32_MAX) {
+        i = static_cast<std::uint32_t>(soup.vertices.size());
+        soup.vertices.push_back(fill.vertices[fill.faces[f][k]]);
+      }
+      added[k] = i;
+    }
+    soup.faces.push_back(added);
+    ++stats.added;
+  }
+  return stats;
+}
+
+}  // namespace sharpmesh
