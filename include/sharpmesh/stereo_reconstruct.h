@@ -161,6 +161,9 @@ struct SoupFilterStats {
   std::size_t input = 0;
   std::size_t removed_visibility = 0;
   std::size_t occluded_tracks = 0;    ///< tracks hidden from most of their views
+  /// Per track: hidden behind the kept triangles from most of its views
+  /// (computed whether or not their triangles are removed).
+  std::vector<bool> occluded;
   std::size_t removed_occluded = 0;   ///< triangles of those tracks
   std::size_t removed_grazing = 0;
   std::size_t removed_anamorphic = 0;
@@ -256,7 +259,7 @@ struct SoupFillOptions {
 };
 
 struct SoupFillStats {
-  std::size_t tracks = 0;             ///< tracks the surface was fitted to
+  std::size_t tracks = 0;             ///< tracks the surface was fitted to (after merging those closer than d'/4)
   std::size_t surface_facets = 0;     ///< facets of the tracks' meshed surface
   std::size_t removed_near_soup = 0;  ///< where the soup already is
   std::size_t removed_far = 0;        ///< farther than `support` from the tracks
@@ -267,9 +270,15 @@ struct SoupFillStats {
 
 /// Adds to `soup` the facets of the tracks' surface where it is empty (see
 /// SoupFillOptions). `size` is the mesher's l in scene units, `sight_margin`
-/// as SoupFilterOptions::sight_margin.
+/// as SoupFilterOptions::sight_margin; `occluded_tracks` (empty: none) as
+/// SoupFilterStats::occluded, left out of the surface.
 SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model, const SoupFillOptions& options,
-                                    double size, double sight_margin, const Progress& progress = {});
+                                    double size, double sight_margin, const std::vector<bool>& occluded_tracks = {},
+                                    const Progress& progress = {});
+
+/// Half the bounding-box diagonal of the vertices the soup's triangles use:
+/// the unit of the mesher's l and d.
+double soup_half_diagonal(const TriangleSoup& soup);
 
 // ---- The pipeline ---------------------------------------------------------
 

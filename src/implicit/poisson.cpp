@@ -41,15 +41,14 @@ class PoissonSurface final : public ImplicitSurface {
   /// CGAL orients the function by an inner point it finds itself; on an open
   /// scene (a street seen from one side) that point can lie outside and the
   /// whole function comes out inverted against consistent normals. Flipped
-  /// back here, with an inner point taken behind a sample.
+  /// here, with an inner point taken behind a sample; false (and unchanged)
+  /// when no such point is found.
   bool flip() {
     sign_ = -sign_;
-    has_inside_ = false;
-    if (sign_ > 0) return true;
     const double h = 1e-3 * bounding_radius();
     const std::size_t stride = std::max<std::size_t>(1, samples_.size() / 500);
     for (std::size_t i = 0; i < samples_.size(); i += stride) {
-      Vec3 n = detail::from_cgal(samples_[i].second);
+      const Vec3 n = detail::from_cgal(samples_[i].second);
       const Vec3 q = detail::from_cgal(samples_[i].first) - (h / norm(n)) * n;
       if (value(q) < 0) {
         inside_ = q;
@@ -57,6 +56,7 @@ class PoissonSurface final : public ImplicitSurface {
         return true;
       }
     }
+    sign_ = -sign_;
     return false;
   }
   Vec3 bounding_center() const override { return detail::from_cgal(function_.bounding_sphere().center()); }
@@ -143,15 +143,12 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   // bounding radius (1e-5 is not enough), keeping the most consistent
   // function. Partly inconsistent normals also lower the agreement; jitter
   // does not help them.
-  // A function that disagrees with nearly all normals is inverted as a whole
-  // (see flip), not inconsistent.
+  // A function that disagrees with nearly all normals (the negated one then
+  // agrees with at least 95%) is inverted as a whole (see flip), not
+  // inconsistent.
   auto agreement_of = [](PoissonSurface& f) {
     const double a = normal_agreement(f);
-    if (!(a < 0.1) || !f.flip()) return a;
-    const double flipped = normal_agreement(f);
-    if (flipped >= 0.95) return flipped;
-    f.flip();  // not a clean inversion: left as it was
-    return a;
+    return a <= 0.05 && f.flip() ? normal_agreement(f) : a;
   };
   double agreement = agreement_of(*surface);
   for (double jitter : {1e-4, 1e-3}) {

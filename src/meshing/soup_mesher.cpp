@@ -160,6 +160,13 @@ void SoupMeshingOptions::check() const {
   if (max_vertices < 4) throw InvalidArgument("the vertex limit must be at least 4");
 }
 
+double soup_half_diagonal(const TriangleSoup& soup) {
+  std::vector<Vec3> used;
+  for (const Triangle& f : soup.faces)
+    for (std::uint32_t v : f) used.push_back(soup.vertices[v]);
+  return 0.5 * bounding_box(used).diagonal();
+}
+
 bool soup_segment_intersection(const TriangleSoup& soup, const Vec3& a, const Vec3& b, Vec3& point) {
   const auto data = build_soup_data(soup);
   K::Point_3 p;
@@ -175,7 +182,7 @@ SoupMeshingResult mesh_soup(const TriangleSoup& soup, const SoupMeshingOptions& 
   std::vector<Vec3> used;
   for (const Triangle& f : soup.faces)
     for (std::uint32_t v : f) used.push_back(soup.vertices[v]);
-  const double half_diagonal = 0.5 * bounding_box(used).diagonal();
+  const double half_diagonal = soup_half_diagonal(soup);
   if (!(half_diagonal > 0)) throw InvalidInput("the triangle soup is degenerate (all vertices at one point)");
   // Seeds: centroids of random soup triangles, so that every sizeable part of the soup is found.
   CGAL::Random random(options.seed);

@@ -68,15 +68,8 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
 
   {
     StageTimer timer(result.stages, "soup fill");
-    double half_diagonal = 0;
-    {
-      std::vector<Vec3> used;
-      for (const Triangle& f : result.soup.faces)
-        for (std::uint32_t v : f) used.push_back(result.soup.vertices[v]);
-      half_diagonal = 0.5 * bounding_box(used).diagonal();
-    }
-    result.fill = fill_soup_from_tracks(result.soup, model, options.fill, options.meshing.size * half_diagonal,
-                                        options.filters.sight_margin, progress);
+    result.fill = fill_soup_from_tracks(result.soup, model, options.fill, options.meshing.size * soup_half_diagonal(result.soup),
+                                        options.filters.sight_margin, result.filters.occluded, progress);
   }
   {
     StageTimer timer(result.stages, "meshing");

@@ -172,8 +172,9 @@ SoupFilterStats filter_soup(TriangleSoup& soup, const StereoModel& model, const 
     // behind kept triangles from most of its views is a matching outlier (it
     // makes pits behind the surface that no line of sight crosses); its
     // triangles go.
-    if (options.remove_occluded_tracks) {
-      std::vector<bool> occluded(model.tracks.size(), false);
+    {
+      std::vector<bool>& occluded = stats.occluded;
+      occluded.assign(model.tracks.size(), false);
       std::vector<std::uint32_t> blocked_views;
       for (std::size_t t = 0; t < model.tracks.size(); ++t) {
         blocked_views.clear();
@@ -184,7 +185,7 @@ SoupFilterStats filter_soup(TriangleSoup& soup, const StereoModel& model, const 
         occluded[t] = 2 * blocked > model.tracks[t].views.size();
         stats.occluded_tracks += occluded[t];
       }
-      for (std::size_t s = 0; s < survivors.faces.size(); ++s) {
+      for (std::size_t s = 0; options.remove_occluded_tracks && s < survivors.faces.size(); ++s) {
         const Triangle& t = survivors.faces[s];
         if (verdict[survivor_of[s]] != Visibility && (occluded[t[0]] || occluded[t[1]] || occluded[t[2]]))
           verdict[survivor_of[s]] = Occluded;

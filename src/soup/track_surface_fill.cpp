@@ -27,21 +27,6 @@ void SoupFillOptions::check() const {
 
 namespace {
 
-/// Tracks hidden behind the soup from more than half of their views (as
-/// filter_soup's occluded tracks): outliers behind surfaces, left out.
-std::vector<bool> visible_tracks(const TriangleSoup& soup, const StereoModel& model, double margin, const Progress& progress) {
-  const SightCrossings crossings = count_sight_crossings(soup, model, margin, progress);
-  std::vector<bool> keep(model.tracks.size(), true);
-  for (std::size_t t = 0; t < model.tracks.size(); ++t) {
-    std::vector<std::uint32_t> blocked_views;
-    for (const auto& [view, face] : crossings.per_track[t]) blocked_views.push_back(view);
-    std::sort(blocked_views.begin(), blocked_views.end());
-    blocked_views.erase(std::unique(blocked_views.begin(), blocked_views.end()), blocked_views.end());
-    keep[t] = 2 * blocked_views.size() <= model.tracks[t].views.size();
-  }
-  return keep;
-}
-
 /// The tracks, one per cell of `cell`, with jet normals turned towards the
 /// mean centre of their views.
 PointSet oriented_tracks(const StereoModel& model, const std::vector<bool>& keep, double cell) {
@@ -67,7 +52,8 @@ PointSet oriented_tracks(const StereoModel& model, const std::vector<bool>& keep
 }  // namespace
 
 SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model, const SoupFillOptions& options,
-                                    double size, double sight_margin, const Progress& progress) {
+                                    double size, double sight_margin, const std::vector<bool>& occluded_tracks,
+                                    const Progress& progress) {
   options.check();
   SoupFillStats stats;
   if (!options.enabled) {
@@ -81,7 +67,8 @@ SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model
   PointSet all;
   for (const Track& t : model.tracks) all.points.push_back(t.position);
   const double spacing = average_spacing(all);
-  const std::vector<bool> keep = visible_tracks(soup, model, sight_margin * spacing, progress);
+  std::vector<bool> keep(model.tracks.size(), true);
+  for (std::size_t t = 0; t < occluded_tracks.size() && t < keep.size(); ++t) keep[t] = !occluded_tracks[t];
   // The tracks' surface at d' = resolution x l; it only serves as the
   // oracle's second answer, so tracks closer than d' / 4 are merged first.
   const double d_prime = std::max(options.resolution * size, spacing);
