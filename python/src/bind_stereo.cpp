@@ -1,5 +1,5 @@
 // Multi-view stereo (thesis Ch. 6; sharpmesh/stereo_reconstruct.h) with the
-// main options of `sharpmesh stereo`: tracks, filters and mesh size.
+// main options of `sharpmesh stereo`: tracks, filters, the soup fill and mesh size.
 #include "convert.h"
 #include "sharpmesh/stereo_io.h"
 #include "sharpmesh/stereo_reconstruct.h"
@@ -13,7 +13,7 @@ void bind_stereo(py::module_& m) {
            int outlier_k, int smooth_k, double min_cone_angle, double canny_sigma, double canny_low, double canny_high,
            bool canny_fixed,
            int max_crossings, double grazing_angle, double ncc, bool no_photo, bool no_track_photo, double angle, double size,
-           double distance, std::uint32_t seed, double max_hole, const py::object& progress) {
+           double distance, std::uint32_t seed, bool no_fill, double max_hole, const py::object& progress) {
           StereoReconstructionOptions o;
           o.tracks.merge_distance = merge_distance;
           o.tracks.outlier_k = outlier_k;
@@ -32,6 +32,7 @@ void bind_stereo(py::module_& m) {
           o.meshing.size = size;
           o.meshing.distance = distance;
           o.meshing.seed = seed;
+          o.fill.enabled = !no_fill;
           o.max_hole = max_hole;
           o.check();
           ProgressBridge bridge(progress);
@@ -49,6 +50,7 @@ void bind_stereo(py::module_& m) {
           counts["soup_triangles"] = r.soup_triangles;
           counts["soup_kept"] = r.filters.output;
           counts["facets"] = r.meshing.mesh.faces.size();
+          counts["fill_added"] = r.fill.added;
           counts["holes_filled"] = r.holes.filled;
           py::dict report;
           report["counts"] = counts;
@@ -66,7 +68,7 @@ void bind_stereo(py::module_& m) {
         py::arg("grazing_angle") = d.filters.grazing_angle, py::arg("ncc") = d.filters.ncc_threshold,
         py::arg("no_photo") = false, py::arg("no_track_photo") = false, py::arg("angle") = d.meshing.angle,
         py::arg("size") = d.meshing.size, py::arg("distance") = d.meshing.distance, py::arg("seed") = d.meshing.seed,
-        py::arg("max_hole") = d.max_hole, py::arg("progress") = py::none(),
+        py::arg("no_fill") = !d.fill.enabled, py::arg("max_hole") = d.max_hole, py::arg("progress") = py::none(),
         R"(Calibrated images and tracks -> mesh, as `sharpmesh stereo MODEL` (thesis Ch. 6) -> (Mesh, tracks (n, 3), report).
 
 model: a COLMAP model folder, a Bundler .out, an .nvm, or a folder of Strecha .camera files (with tracks=);

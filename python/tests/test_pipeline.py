@@ -120,5 +120,8 @@ def test_stereo_on_a_generated_scene(tmp_path, cli):
     truth = sm.read_mesh(str(scene / "ground_truth.ply"))
     scene_size = 2 * report["half_diagonal"]
     assert np.median(sm.distances_to_mesh(mesh.vertices, truth)) < 0.01 * scene_size
+    assert report["counts"]["fill_added"] > 0
+    _, _, thesis = sm.stereo(str(scene), no_fill=True)
+    assert thesis["counts"]["fill_added"] == 0 and "soup fill" in thesis["stages"]
     with pytest.raises(sm.InvalidInput):
         sm.stereo(str(tmp_path / "nowhere"))
