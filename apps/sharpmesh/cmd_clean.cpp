@@ -17,6 +17,7 @@ Command add_clean(CLI::App& app) {
     int outlier_k = 24;
     double outlier_sigmas = -1;
     int sigma_k = 150;
+    bool sigma_relative = false;
     std::optional<double> grid_cell;  ///< multiples of the average spacing
     double random_percentage = -1;
     int smooth_k = 0;
@@ -39,6 +40,9 @@ Command add_clean(CLI::App& app) {
   sub->add_option("--outlier-k", o->outlier_k, "Neighbours for --outliers")->check(CLI::PositiveNumber)->capture_default_str()->group(g1);
   sub->add_option("--outliers-sigma", o->outlier_sigmas, "Remove points whose average squared kNN distance exceeds mean + S standard deviations (6.3.1: 3)")
       ->group(g1);
+  sub->add_flag("--sigma-relative", o->sigma_relative,
+               "Beyond the thesis: score each point's kNN distance against its neighbours' (median), so regions that are only "
+               "sparser are kept")->group(g1);
   sub->add_option("--sigma-k", o->sigma_k, "Neighbours for --outliers-sigma (6.3.1: 150)")->check(CLI::PositiveNumber)->capture_default_str()->group(g1);
   auto g2 = "2. Simplification";
   sub->add_option("--grid", o->grid_cell, "Keep one point per grid cell of this size, in multiples of the average spacing (App. A.5)")->group(g2);
@@ -63,7 +67,7 @@ Command add_clean(CLI::App& app) {
     check_output(common->report, "report");
     CleanOptions options;
     if (o->outlier_percentage >= 0) options.outliers = PercentageOutlierOptions{o->outlier_k, o->outlier_percentage};
-    if (o->outlier_sigmas != -1) options.outliers_sigma = SigmaOutlierOptions{o->sigma_k, o->outlier_sigmas};
+    if (o->outlier_sigmas != -1) options.outliers_sigma = SigmaOutlierOptions{o->sigma_k, o->outlier_sigmas, o->sigma_relative};
     options.grid_cell = o->grid_cell;
     if (o->random_percentage >= 0) options.random_percentage = o->random_percentage;
     options.seed = o->seed;
@@ -107,7 +111,7 @@ Command add_clean(CLI::App& app) {
                                   {"output", o->output},
                                   {"parameters",
                                    {{"outliers", o->outlier_percentage}, {"outlier_k", o->outlier_k},
-                                    {"outliers_sigma", o->outlier_sigmas}, {"sigma_k", o->sigma_k},
+                                    {"outliers_sigma", o->outlier_sigmas}, {"sigma_k", o->sigma_k}, {"sigma_relative", o->sigma_relative},
                                     {"grid_cell_in_average_spacings", o->grid_cell ? nlohmann::json(*o->grid_cell) : nlohmann::json()}, {"random", o->random_percentage},
                                     {"seed", o->seed}, {"smooth_k", o->smooth_k}, {"normals", o->normals},
                                     {"normal_k", o->normal_k}, {"orient", o->orient}, {"orient_k", o->orient_k}, {"orient_method", o->orient_method}}},

@@ -54,7 +54,10 @@ Command add_stereo(CLI::App& app) {
   auto& t = o->stereo.tracks;
   sub->add_option("--merge-distance", t.merge_distance, "t1: merge tracks closer than this, fraction of the half diagonal (6.3.1)")->capture_default_str();
   sub->add_option("--outlier-k", t.outlier_k, "k of the distance-to-neighbours 3-sigma filter (6.3.1)")->capture_default_str();
-  sub->add_option("--min-cone-angle", t.min_cone_angle, "t2: remove tracks whose cameras span a cone narrower than this, radians (6.3.1)")->capture_default_str();
+  sub->add_flag("!--outlier-global", t.outlier_relative,
+               "Compare each track's d_k with the whole cloud's (the thesis); default: with its k neighbours' (median), so "
+               "regions that are only sparser, e.g. far from the cameras, are kept");
+  sub->add_option("--min-cone-angle", t.min_cone_angle, "t2: remove tracks whose cameras span a cone narrower than this, radians (6.3.1); 0: off, tracks seen in one image kept")->capture_default_str();
   sub->add_option("--smooth-k", t.smooth_k, "k of the Gaussian jet smoothing, 0: off (6.3.1)")->capture_default_str();
   sub->add_option("--track-ncc", o->stereo.track_photo.min_ncc,
                   "Beyond the thesis: remove tracks whose 7x7 windows in their views agree less (mean pairwise NCC) or have no texture")
@@ -176,7 +179,7 @@ Command add_stereo(CLI::App& app) {
         {"units", "lengths in data units; merge distance, size, distance and max_hole as fractions of the tracks' half diagonal"},
         {"parameters",
          {{"merge_distance", so.tracks.merge_distance}, {"outlier_k", so.tracks.outlier_k},
-          {"outlier_sigmas", so.tracks.outlier_sigmas}, {"min_cone_angle_rad", so.tracks.min_cone_angle},
+          {"outlier_sigmas", so.tracks.outlier_sigmas}, {"outlier_relative", so.tracks.outlier_relative}, {"min_cone_angle_rad", so.tracks.min_cone_angle},
           {"smooth_k", so.tracks.smooth_k}, {"track_photo", so.track_photo.enabled},
           {"track_ncc", so.track_photo.min_ncc}, {"track_window", 2 * so.track_photo.half_window + 1}, {"canny_sigma", so.depth_maps.canny_sigma},
           {"canny_low", so.depth_maps.canny_low}, {"canny_high", so.depth_maps.canny_high},

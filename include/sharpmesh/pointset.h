@@ -37,6 +37,12 @@ std::size_t remove_outliers_percentage(PointSet& points, const PercentageOutlier
 struct SigmaOutlierOptions {
   int k = 150;          ///< Section 6.3.1
   double sigmas = 3.0;  ///< Section 6.3.1
+  /// false: the thesis's score d_k(p), compared over the whole cloud, which
+  /// removes whole regions that are merely sparser (far from the cameras,
+  /// seen at a slant). true (beyond the thesis): d_k(p) divided by the median
+  /// d_k of p's k neighbours, so a point is an outlier when it is isolated
+  /// relative to its own surroundings.
+  bool relative = false;
   void check(std::size_t n) const;
 };
 std::size_t remove_outliers_sigma(PointSet& points, const SigmaOutlierOptions& options = {},

@@ -32,6 +32,10 @@ struct TrackPreprocessOptions {
   double merge_distance = 0.001;
   int outlier_k = 150;            ///< k of the distance-to-neighbours filter
   double outlier_sigmas = 3.0;    ///< the 3-sigma rule
+  /// Beyond the thesis: score each track's d_k relative to its neighbours'
+  /// (SigmaOutlierOptions::relative). The thesis's global rule removes every
+  /// track of a region that is only sparser, e.g. ground far from the cameras.
+  bool outlier_relative = true;
   double min_cone_angle = 0.08;   ///< t2, radians
   int smooth_k = 85;              ///< k of the jet smoothing; 0 disables smoothing
   void check() const;

@@ -4,6 +4,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -73,8 +74,24 @@ std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOut
       dk[i] = sum / options.k;
     }
   });
+  if (options.relative) {  // d_k over the median d_k of the neighbours
+    std::vector<double> score(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+      std::vector<std::uint32_t> ids;
+      std::vector<double> d2, around;
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        index.nearest(points[i], options.k + 1, ids, d2);
+        around.clear();
+        for (std::size_t j = 1; j < ids.size(); ++j) around.push_back(dk[ids[j]]);
+        const auto middle = around.begin() + static_cast<std::ptrdiff_t>(around.size() / 2);
+        std::nth_element(around.begin(), middle, around.end());
+        score[i] = *middle > 0 ? dk[i] / *middle : (dk[i] > 0 ? 1e6 : 1.0);  // neighbours all duplicates
+      }
+    });
+    dk = std::move(score);
+  }
   report_progress(progress, "3-sigma outlier removal", 1.0);
-  // Mean and standard deviation of d_k; Section 6.3.1 removes points above mean + 3 sigma.
+  // Mean and standard deviation of the score; Section 6.3.1 removes points above mean + 3 sigma.
   double mean = 0;
   for (double d : dk) mean += d;
   mean /= n;

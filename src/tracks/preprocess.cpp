@@ -56,7 +56,7 @@ TrackPreprocessStats preprocess_tracks(StereoModel& model, const TrackPreprocess
     for (Track& t : model.tracks) {
       centers.clear();
       for (std::uint32_t v : t.views) centers.push_back(centers_of_view[v]);
-      if (t.views.size() >= 2 && cone_angle(t.position, centers) >= options.min_cone_angle)
+      if (options.min_cone_angle == 0 || (t.views.size() >= 2 && cone_angle(t.position, centers) >= options.min_cone_angle))
         kept.push_back(std::move(t));
       else
         ++stats.removed_cone;
@@ -64,7 +64,8 @@ TrackPreprocessStats preprocess_tracks(StereoModel& model, const TrackPreprocess
     model.tracks = std::move(kept);
   }
 
-  // The 3-sigma rule on the average squared distance to the k nearest neighbours.
+  // The 3-sigma rule on the average squared distance to the k nearest neighbours
+  // (relative to the neighbours' own by default, beyond the thesis).
   if (model.tracks.size() > static_cast<std::size_t>(options.outlier_k)) {
     std::vector<Vec3> points;
     points.reserve(model.tracks.size());
@@ -72,6 +73,7 @@ TrackPreprocessStats preprocess_tracks(StereoModel& model, const TrackPreprocess
     SigmaOutlierOptions sigma;
     sigma.k = options.outlier_k;
     sigma.sigmas = options.outlier_sigmas;
+    sigma.relative = options.outlier_relative;
     const std::vector<bool> outlier = sigma_outliers(points, sigma, progress);
     std::vector<Track> kept;
     kept.reserve(model.tracks.size());

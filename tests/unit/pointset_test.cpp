@@ -66,6 +66,34 @@ TEST(Outliers, ThreeSigmaRuleRemovesPlantedOutliersAndNothingElse) {
   for (const Vec3& p : ps.points) EXPECT_LT(std::abs(p[2]), 0.01);
 }
 
+// A dense patch, a patch 16 times sparser (as ground far from the cameras
+// is, in tracks from images) and isolated points: the thesis's global rule
+// removes the sparse patch wholesale, the relative rule keeps it.
+TEST(Outliers, RelativeThreeSigmaRuleKeepsSparseRegionsAndRemovesIsolatedPoints) {
+  PointSet ps = grid(60, 0.02, 0.0005);
+  const std::size_t dense = ps.size();
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j) ps.points.push_back({3.0 + 0.08 * i, 0.08 * j, 0.0});
+  const std::size_t sparse = ps.size() - dense;
+  for (int i = 0; i < 6; ++i) ps.points.push_back({0.3 * i, 3.0 + 0.7 * i, 1.5 - 0.4 * i});
+  SigmaOutlierOptions options;
+  options.k = 24;
+  const std::vector<Vec3> patches(ps.points.begin(), ps.points.begin() + static_cast<std::ptrdiff_t>(dense + sparse));
+  const std::vector<bool> global = sigma_outliers(patches, options);  // isolated points would inflate its sigma
+  options.relative = true;
+  const std::vector<bool> relative = sigma_outliers(ps.points, options);
+  std::size_t global_sparse = 0, relative_sparse = 0, relative_dense = 0, relative_isolated = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (i < dense) relative_dense += relative[i];
+    else if (i < dense + sparse) global_sparse += global[i], relative_sparse += relative[i];
+    else relative_isolated += relative[i];
+  }
+  EXPECT_GT(global_sparse, sparse / 2) << "the fixture should defeat the global rule";
+  EXPECT_EQ(relative_sparse, 0u);
+  EXPECT_EQ(relative_dense, 0u);
+  EXPECT_EQ(relative_isolated, 6u);
+}
+
 TEST(Outliers, PercentageRemovesTheMostIsolatedPoints) {
   PointSet ps = grid(20, 0.05);
   for (int i = 0; i < 4; ++i) ps.points.push_back({10.0 * (i + 1), 0, 0});
