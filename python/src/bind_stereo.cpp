@@ -10,13 +10,14 @@ void bind_stereo(py::module_& m) {
   const StereoReconstructionOptions d;
   m.def("stereo",
         [](const std::string& model_path, const std::string& images, const std::string& tracks, double merge_distance,
-           int outlier_k, int smooth_k, double min_cone_angle, double canny_sigma, double canny_low, double canny_high,
+           int outlier_k, bool outlier_global, int smooth_k, double min_cone_angle, double canny_sigma, double canny_low, double canny_high,
            bool canny_fixed,
            int max_crossings, double grazing_angle, double ncc, bool no_photo, bool no_track_photo, double angle, double size,
            double distance, std::uint32_t seed, bool no_fill, double max_hole, const py::object& progress) {
           StereoReconstructionOptions o;
           o.tracks.merge_distance = merge_distance;
           o.tracks.outlier_k = outlier_k;
+          o.tracks.outlier_relative = !outlier_global;
           o.tracks.smooth_k = smooth_k;
           o.tracks.min_cone_angle = min_cone_angle;
           o.track_photo.enabled = !no_track_photo;
@@ -62,6 +63,7 @@ void bind_stereo(py::module_& m) {
         },
         py::arg("model"), py::kw_only(), py::arg("images") = "", py::arg("tracks") = "",
         py::arg("merge_distance") = d.tracks.merge_distance, py::arg("outlier_k") = d.tracks.outlier_k,
+        py::arg("outlier_global") = !d.tracks.outlier_relative,
         py::arg("smooth_k") = d.tracks.smooth_k, py::arg("min_cone_angle") = d.tracks.min_cone_angle,
         py::arg("canny_sigma") = d.depth_maps.canny_sigma, py::arg("canny_low") = d.depth_maps.canny_low,
         py::arg("canny_high") = d.depth_maps.canny_high, py::arg("canny_fixed") = false, py::arg("max_crossings") = d.filters.max_crossings,

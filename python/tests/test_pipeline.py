@@ -121,7 +121,8 @@ def test_stereo_on_a_generated_scene(tmp_path, cli):
     scene_size = 2 * report["half_diagonal"]
     assert np.median(sm.distances_to_mesh(mesh.vertices, truth)) < 0.01 * scene_size
     assert report["counts"]["fill_added"] > 0
-    _, _, thesis = sm.stereo(str(scene), no_fill=True)
+    _, _, thesis = sm.stereo(str(scene), no_fill=True, outlier_global=True)
     assert thesis["counts"]["fill_added"] == 0 and "soup fill" in thesis["stages"]
+    assert thesis["counts"]["tracks_kept"] != report["counts"]["tracks_kept"]  # the thesis's global 3-sigma rule
     with pytest.raises(sm.InvalidInput):
         sm.stereo(str(tmp_path / "nowhere"))
