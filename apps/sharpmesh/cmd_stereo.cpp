@@ -92,14 +92,14 @@ Command add_stereo(CLI::App& app) {
   sub->add_option("--fill-crossings", fill.max_crossings, "Remove fill facets crossed by more lines of sight")->capture_default_str();
   auto& m = o->stereo.meshing;
   sub->add_option("--angle", m.angle, "alpha: minimum facet angle, degrees (6.2.1)")->capture_default_str();
-  sub->add_option("--size", m.size, "l: maximum surface Delaunay ball radius, fraction of the half diagonal (6.5)")->capture_default_str();
-  sub->add_option("--distance", m.distance, "d: maximum facet-to-surface distance, fraction of the half diagonal (6.5)")->capture_default_str();
+  sub->add_option("--size", m.size, "l: maximum surface Delaunay ball radius, fraction of the soup's half diagonal (6.5)")->capture_default_str();
+  sub->add_option("--distance", m.distance, "d: maximum facet-to-surface distance, fraction of the soup's half diagonal (6.5)")->capture_default_str();
   sub->add_option("--max-vertices", m.max_vertices, "Stop with an error past this many mesh vertices")->capture_default_str();
   sub->add_option("--seed", m.seed, "Seed of the refinement's initial points")->capture_default_str();
   sub->add_option("--seed-cell", m.seed_cell, "Also one initial point per occupied cell of a grid of this step, size bounds l")->capture_default_str();
   sub->add_option("--initial-points", m.initial_points, "Initial points of the refinement (centroids of random soup triangles)")->capture_default_str();
   sub->add_option("--max-hole", o->stereo.max_hole,
-                  "Fill the mesh's holes whose boundary is shorter than this, fraction of the half diagonal; 0: off (beyond the thesis, its remedy of 6.6)")
+                  "Fill the mesh's holes whose boundary is shorter than this, fraction of the soup's half diagonal; 0: off (beyond the thesis, its remedy of 6.6)")
       ->capture_default_str();
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
   common->add_to(*sub);
@@ -176,7 +176,8 @@ Command add_stereo(CLI::App& app) {
         {"images", image_folder},
         {"tracks_input", o->tracks.empty() ? o->model : o->tracks},
         {"output", o->output},
-        {"units", "lengths in data units; merge distance, size, distance and max_hole as fractions of the tracks' half diagonal"},
+        {"units", "lengths in data units; merge distance as a fraction of the input tracks' half diagonal, size, distance and max_hole of "
+                  "the filtered soup's (derived.soup_half_diagonal)"},
         {"parameters",
          {{"merge_distance", so.tracks.merge_distance}, {"outlier_k", so.tracks.outlier_k},
           {"outlier_sigmas", so.tracks.outlier_sigmas}, {"outlier_relative", so.tracks.outlier_relative}, {"min_cone_angle_rad", so.tracks.min_cone_angle},
@@ -194,7 +195,7 @@ Command add_stereo(CLI::App& app) {
           {"size", so.meshing.size}, {"distance", so.meshing.distance}, {"seed", so.meshing.seed},
           {"fill", so.fill.enabled}, {"fill_gap_l", so.fill.gap}, {"fill_support_spacings", so.fill.support},
           {"fill_max_crossings", so.fill.max_crossings}, {"max_hole", so.max_hole}}},
-        {"derived", {{"half_diagonal", half_diagonal}}},
+        {"derived", {{"half_diagonal", half_diagonal}, {"soup_half_diagonal", result.meshing.half_diagonal}}},
         {"counts",
          {{"views", model.cameras.size()},
           {"tracks", {{"input", ts.input}, {"merged", ts.merged}, {"removed_distance", ts.removed_distance},

@@ -56,6 +56,7 @@ void bind_stereo(py::module_& m) {
           py::dict report;
           report["counts"] = counts;
           report["half_diagonal"] = r.tracks.half_diagonal;
+          report["soup_half_diagonal"] = r.meshing.half_diagonal;
           report["stages"] = stages_dict(r.stages);
           std::vector<Vec3> track_points;
           for (const Track& t : model.tracks) track_points.push_back(t.position);
@@ -75,7 +76,8 @@ void bind_stereo(py::module_& m) {
 
 model: a COLMAP model folder, a Bundler .out, an .nvm, or a folder of Strecha .camera files (with tracks=);
 images: their folder (default: MODEL/images or next to it); tracks: a tracks PLY or COLMAP's fused.ply (with .vis).
-merge_distance, size, distance and max_hole are fractions of the tracks' half diagonal; the other options are those of the CLI.)");
+merge_distance is a fraction of the input tracks' half diagonal (report['half_diagonal']), size, distance and max_hole of the
+filtered soup's (report['soup_half_diagonal']); the other options are those of the CLI.)");
 }
 
 }  // namespace sharpmesh::python
