@@ -74,7 +74,11 @@ std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOut
       dk[i] = sum / options.k;
     }
   });
-  if (options.relative) {  // d_k over the median d_k of the neighbours
+  // d_k over the median d_k of the neighbours. The neighbours are queried
+  // again rather than kept from the first pass: k = 150 ids per point would
+  // take 600 bytes a point, and the second query measured no slower in the
+  // stereo study's 200k-track run.
+  if (options.relative) {
     std::vector<double> score(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
       std::vector<std::uint32_t> ids;
