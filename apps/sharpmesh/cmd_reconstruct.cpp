@@ -32,7 +32,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
-    bool no_features = false, fixed_balls = false, no_flattening = false, ascii = false;
+    bool no_features = false, fixed_balls = false, no_flattening = false, no_sign_repair = false, ascii = false;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
@@ -66,12 +66,14 @@ Command add_reconstruct(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--no-flattening", o->no_flattening,
                 "Keep the facets along protected edges on the Poisson surface (the thesis) instead of moving their third vertices onto the data's face planes");
-  sub->add_option("--normals", o->normals, "Normals when the input has none: auto (with features: cvcm, jet where the CVCM is isotropic; else jet), cvcm (thesis 7.4 throughout), jet or pca")
+  sub->add_option("--normals", o->normals, "Normals when the input has none: auto (with features: cvcm; where the CVCM is isotropic, jet normals for the orientation, then crease-aware plane fits on clean clouds; else jet), cvcm (thesis 7.4 throughout), jet or pca")
       ->check(CLI::IsMember({"auto", "cvcm", "pca", "jet"}))
       ->capture_default_str();
   sub->add_option("--normal-k", o->reconstruct.normals.k, "Neighbours for jet/pca normal estimation")->capture_default_str();
   sub->add_option("--orient-k", o->reconstruct.orientation.k, "Neighbours for MST normal orientation")->capture_default_str();
   sub->add_flag("--recompute-normals", o->reconstruct.recompute_normals, "Ignore the input's normals and estimate new ones");
+  sub->add_flag("--no-sign-repair", o->no_sign_repair,
+                "Keep the normals the Poisson function contradicts (by default they are flipped and Poisson solved again, up to 3 times)");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
@@ -85,6 +87,7 @@ Command add_reconstruct(CLI::App& app) {
     ReconstructOptions& options = o->reconstruct;
     options.feature_mode = o->no_features ? FeatureMode::None : o->features_file.empty() ? FeatureMode::Extract : FeatureMode::Given;
     options.adapt_balls_to_gap = !o->fixed_balls;
+    options.repair_normal_signs = !o->no_sign_repair;
     options.flatten_features = !o->no_flattening;
     if (o->normals == "auto") {
       options.normal_source = NormalSource::Automatic;
@@ -145,7 +148,7 @@ Command add_reconstruct(CLI::App& app) {
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
           {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"normals", o->normals}, {"normal_k", options.normals.k},
-          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals},
+          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",
          {{"average_spacing", length_json(result.average_spacing, diagonal)},
@@ -157,7 +160,7 @@ Command add_reconstruct(CLI::App& app) {
           {"estimated_facets", result.estimated_facets}}},
         {"counts",
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
-          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals},
+          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals}, {"sharpened_normals", result.sharpened_normals}, {"sign_repaired_normals", result.sign_repaired_normals},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
           {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},

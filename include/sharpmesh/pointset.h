@@ -98,6 +98,20 @@ void estimate_normals(PointSet& points, const NormalEstimationOptions& options =
 void estimate_normals_at(PointSet& points, const std::vector<std::uint32_t>& indices,
                          const NormalEstimationOptions& options = {});
 
+/// Crease-aware normals at the given points (neighbourhood shifting, beyond
+/// App. A.7): each point takes, among the least-squares planes of the
+/// k-neighbourhoods of its `candidates` nearest points (itself included),
+/// the one minimising RMS residual + the point's distance to the plane. Next
+/// to a crease some shifted neighbourhood lies on the point's own face, where
+/// a centred one straddles both. Unoriented; the other normals are kept.
+struct ShiftedNormalOptions {
+  int k = 10;           ///< points per fitted plane (at least 6)
+  int candidates = 18;  ///< nearest points whose planes compete
+  void check(std::size_t n) const;
+};
+void estimate_shifted_normals_at(PointSet& points, const std::vector<std::uint32_t>& indices,
+                                 const ShiftedNormalOptions& options = {});
+
 /// Orients normals by propagation along a minimum spanning tree of the
 /// k-nearest-neighbour graph (Hoppe et al. 1992; App. A.8). Points whose
 /// normal could not be oriented are moved to the end and, if

@@ -67,6 +67,9 @@ struct ReconstructOptions {
   /// when they disagree in sign (false: their signs come from elsewhere,
   /// e.g. the cameras that saw each point, and are used as given).
   bool check_input_normals = true;
+  /// Flip the normals the Poisson function contradicts and solve again
+  /// (beyond the thesis; not with check_input_normals = false).
+  bool repair_normal_signs = true;
   std::size_t max_facets = 5'000'000;
   std::uint32_t seed = 0;
   void check(std::size_t n) const;
@@ -88,9 +91,11 @@ struct ReconstructResult {
   /// Share of the input's normals whose sign the tangent MST orientation of
   /// their lines keeps (between 0.1 and 0.9: inconsistent, re-oriented); 0 without input normals.
   double input_normal_agreement = 0;
-  /// CVCM normals replaced by PCA normals where the convolved VCM is
-  /// isotropic (lambda0/lambda1 < 10: thin walls, corners).
+  /// CVCM normals replaced by jet normals where the convolved VCM is
+  /// isotropic (lambda0/lambda1 < 20: thin walls, creases, corners).
   std::size_t isotropic_cvcm_normals = 0;
+  std::size_t sharpened_normals = 0;  ///< isotropic-CVCM normals replaced by crease-aware ones (shifted planes)
+  std::size_t sign_repaired_normals = 0;  ///< normal flips kept by the sign repair against the Poisson function
   FeatureResult features;            ///< when extracted (graph only when given)
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)

@@ -18,6 +18,8 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["normal_source"] = r.normal_source;
   counts["input_normal_agreement"] = r.input_normal_agreement;
   counts["isotropic_cvcm_normals"] = r.isotropic_cvcm_normals;
+  counts["sharpened_normals"] = r.sharpened_normals;
+  counts["sign_repaired_normals"] = r.sign_repaired_normals;
   counts["vertices"] = r.mesh.vertices.size();
   counts["facets"] = r.mesh.faces.size();
   counts["trimmed_facets"] = r.trimmed_facets;
@@ -58,7 +60,7 @@ void bind_reconstruct(py::module_& m) {
   m.def("reconstruct",
         [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
            double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double seed_spacing, bool no_flattening, const std::string& normals, int normal_k, int orient_k,
-           bool recompute_normals, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
+           bool recompute_normals, bool no_sign_repair, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
            double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k,
            const py::object& progress) {
           const PointSet set = to_point_set(points, point_normals);
@@ -89,6 +91,7 @@ void bind_reconstruct(py::module_& m) {
           o.normals.k = normal_k;
           o.orientation.k = orient_k;
           o.recompute_normals = recompute_normals;
+          o.repair_normal_signs = !no_sign_repair;
           o.max_facets = max_facets;
           o.seed = seed;
           o.features = feature_options(offset_radius, convolution_radius, t1, t2, cluster_k, cluster_angle, successor_k,
@@ -105,6 +108,7 @@ void bind_reconstruct(py::module_& m) {
         py::arg("poisson_spacing") = d.poisson_spacing, py::arg("poisson_thinning") = d.poisson_thinning, py::arg("seed_spacing") = d.data_seed_spacing,
         py::arg("no_flattening") = false, py::arg("normals") = "auto",
         py::arg("normal_k") = d.normals.k, py::arg("orient_k") = d.orientation.k, py::arg("recompute_normals") = false,
+        py::arg("no_sign_repair") = false,
         py::arg("max_facets") = d.max_facets, py::arg("seed") = d.seed, py::arg("offset_radius") = f.offset_radius,
         py::arg("convolution_radius") = f.convolution_radius, py::arg("t1") = f.t1, py::arg("t2") = f.t2,
         py::arg("cluster_k") = f.cluster_k, py::arg("cluster_angle") = f.cluster_angle, py::arg("successor_k") = f.successor_k,
@@ -119,7 +123,8 @@ poisson_thinning x avg to an earlier one (0: none); seed_spacing: before refinem
 seed_spacing x d' projected onto the implicit surface as a vertex (0: none); no_flattening: keep the facets along protected
 edges on the Poisson surface; normals (when
 point_normals is None or recompute_normals): 'auto', 'cvcm', 'jet' or 'pca', over normal_k neighbours, oriented over
-orient_k; max_facets: refuse larger estimates (0: no limit); the feature options are those of extract_features().)");
+orient_k; no_sign_repair: keep the normals the Poisson function contradicts (by default flipped and
+Poisson solved again, up to 3 times); max_facets: refuse larger estimates (0: no limit); the feature options are those of extract_features().)");
 }
 
 }  // namespace sharpmesh::python

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <limits>
 #include <tuple>
 
 #include "core/plane_fit.h"
@@ -37,6 +38,16 @@ void check_k(int k, int minimum, std::size_t n, const char* what) {
     throw InvalidArgument(std::string(what) + ": k must be at least " + format_number(minimum) + " (got " + format_number(k) + ")");
   if (static_cast<std::size_t>(k) >= n)
     throw InvalidArgument(std::string(what) + ": k = " + format_number(k) + " needs more than k points, the set has " + format_number(n));
+}
+
+/// Checks shared by the estimates at given points; zero normals where there
+/// were none. False when there is nothing to estimate.
+bool prepare_normals_at(PointSet& points, const std::vector<std::uint32_t>& indices) {
+  if (points.normals.size() != points.size()) points.normals.assign(points.size(), Vec3{0, 0, 0});
+  if (indices.empty()) return false;
+  for (std::uint32_t i : indices)
+    if (i >= points.size()) throw InvalidArgument("normal estimation: point index out of range");
+  return true;
 }
 
 }  // namespace
@@ -69,10 +80,7 @@ void estimate_normals(PointSet& points, const NormalEstimationOptions& options, 
 void estimate_normals_at(PointSet& points, const std::vector<std::uint32_t>& indices, const NormalEstimationOptions& options) {
   check_point_set(points, 4, "normal estimation");
   options.check(points.size());
-  if (points.normals.size() != points.size()) points.normals.assign(points.size(), Vec3{0, 0, 0});
-  if (indices.empty()) return;
-  for (std::uint32_t i : indices)
-    if (i >= points.size()) throw InvalidArgument("normal estimation: point index out of range");
+  if (!prepare_normals_at(points, indices)) return;
   using Monge = CGAL::Monge_via_jet_fitting<detail::Kernel, CGAL::Simple_cartesian<double>, CGAL::Eigen_svd>;
   const detail::KnnIndex index(points.points);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -99,6 +107,62 @@ void estimate_normals_at(PointSet& points, const std::vector<std::uint32_t>& ind
       const double length = norm(n);
       points.normals[i] = length > 0 && std::isfinite(length) ? (1.0 / length) * n : Vec3{0, 0, 0};
     }
+  });
+}
+
+void ShiftedNormalOptions::check(std::size_t n) const {
+  check_k(k, 6, n, "shifted normal estimation");
+  check_k(candidates, 1, n, "shifted normal estimation (candidates)");
+}
+
+void estimate_shifted_normals_at(PointSet& points, const std::vector<std::uint32_t>& indices, const ShiftedNormalOptions& options) {
+  check_point_set(points, 4, "normal estimation");
+  options.check(points.size());
+  if (!prepare_normals_at(points, indices)) return;
+  const detail::KnnIndex index(points.points);
+  const std::size_t kc = static_cast<std::size_t>(options.candidates);
+  // The candidates of every point, then one plane per candidate (each fitted once).
+  std::vector<std::uint32_t> candidates(indices.size() * kc);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    for (std::size_t m = range.begin(); m != range.end(); ++m) {
+      index.nearest(points.points[indices[m]], options.candidates, ids, d2);
+      std::copy(ids.begin(), ids.end(), candidates.begin() + static_cast<std::ptrdiff_t>(m * kc));
+    }
+  });
+  std::vector<char> needed(points.size(), 0);
+  for (std::uint32_t j : candidates) needed[j] = 1;
+  std::vector<std::uint32_t> fitted;
+  for (std::size_t j = 0; j < needed.size(); ++j)
+    if (needed[j]) fitted.push_back(static_cast<std::uint32_t>(j));
+  std::vector<detail::Plane> planes(points.size());
+  std::vector<double> residual(points.size(), std::numeric_limits<double>::infinity());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fitted.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    std::vector<Eigen::Vector3d> local;
+    for (std::size_t m = range.begin(); m != range.end(); ++m) {
+      const std::uint32_t j = fitted[m];
+      index.nearest(points.points[j], options.k, ids, d2);
+      local.clear();
+      for (std::uint32_t q : ids) local.emplace_back(points.points[q][0], points.points[q][1], points.points[q][2]);
+      double rms = 0;
+      if (detail::fit_plane(local, planes[j], rms)) residual[j] = rms;
+    }
+  });
+  tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t m) {
+    const Vec3& p = points.points[indices[m]];
+    const Eigen::Vector3d x(p[0], p[1], p[2]);
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 normal{0, 0, 0};
+    for (std::size_t c = 0; c < kc; ++c) {  // nearest first: ties go to the nearest candidate
+      const std::uint32_t j = candidates[m * kc + c];
+      if (!std::isfinite(residual[j])) continue;
+      const double score = residual[j] + std::abs(planes[j].normal.dot(x - planes[j].point));
+      if (score < best) best = score, normal = {planes[j].normal(0), planes[j].normal(1), planes[j].normal(2)};
+    }
+    points.normals[indices[m]] = normal;
   });
 }
 

@@ -191,6 +191,40 @@ TEST(Normals, EstimatesAtGivenPointsOnly) {
   EXPECT_THROW(estimate_normals_at(some, indices, jet), InvalidArgument);
 }
 
+// Next to a crease a centred neighbourhood straddles two faces; a shifted
+// one (the best-fitting plane among the neighbours' neighbourhoods) lies on
+// the point's own face. A cube's points within one spacing of an edge.
+TEST(Normals, ShiftedNeighbourhoodsKeepTheFaceNormalNextToACrease) {
+  SampleOptions sampling;
+  sampling.count = 24000;
+  sampling.seed = 5;
+  sampling.with_normals = true;
+  const PointSet truth = sample_mesh(test::cube_mesh(1.0), sampling);  // spacing about 0.03
+  std::vector<std::uint32_t> near_edges;
+  for (std::uint32_t i = 0; i < truth.size(); ++i) {
+    int at_face = 0;
+    for (int axis = 0; axis < 3; ++axis) at_face += std::abs(truth.points[i][axis]) > 1 - 0.03;
+    if (at_face >= 2) near_edges.push_back(i);
+  }
+  ASSERT_GT(near_edges.size(), 300u);
+  auto mean_error_deg = [&](const PointSet& estimated) {
+    double sum = 0;
+    for (std::uint32_t i : near_edges)
+      sum += std::acos(std::min(1.0, std::abs(dot(estimated.normals[i], truth.normals[i])))) * 180 / M_PI;
+    return sum / static_cast<double>(near_edges.size());
+  };
+  PointSet jet{truth.points, {}, {}};
+  estimate_normals_at(jet, near_edges, {NormalMethod::Jet, 18});
+  PointSet shifted{truth.points, {}, {}};
+  estimate_shifted_normals_at(shifted, near_edges, {8, 18});
+  std::printf("mean normal error next to the cube's edges: jet %.2f deg, shifted %.2f deg\n", mean_error_deg(jet), mean_error_deg(shifted));
+  EXPECT_GT(mean_error_deg(jet), 10.0);
+  EXPECT_LT(mean_error_deg(shifted), 3.0);
+  for (std::uint32_t i = 0; i < shifted.size(); ++i)
+    if (!std::binary_search(near_edges.begin(), near_edges.end(), i)) ASSERT_EQ(shifted.normals[i], (Vec3{0, 0, 0}));
+  EXPECT_THROW(estimate_shifted_normals_at(shifted, near_edges, {4, 18}), InvalidArgument);
+}
+
 TEST(Normals, OrientationNeedsNormals) {
   PointSet ps = sphere_points(100);
   EXPECT_THROW(orient_normals_mst(ps), InvalidArgument);

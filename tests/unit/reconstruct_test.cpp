@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "fixtures.h"
@@ -300,6 +301,30 @@ TEST(Reconstruct, InputNormalsAreCheckedBeforePoissonUsesThem) {
   EXPECT_TRUE(estimated.normals_estimated);
   EXPECT_NE(estimated.normal_source.find("input normals unusable"), std::string::npos) << estimated.normal_source;
   expect_valid_and_close(estimated.mesh, cube, 0.005);
+}
+
+// Normals the orientation got wrong (the MST leaves small inverted groups
+// where faces a few spacings wide meet, e.g. in a counterbore of CGAL's
+// couplingdown): the Poisson function follows the majority around them, and
+// the normals it contradicts are flipped and Poisson solved again. Here 2.5%
+// of a sphere's normals, scattered, are inverted: the repair flips those and
+// no others. (A large inverted patch, 90 points in one cap, is followed by the
+// function instead and stays: Poisson dents the cap; not repaired.)
+TEST(Reconstruct, SignRepairFlipsTheNormalsThePoissonFunctionContradicts) {
+  const SurfaceMesh sphere = test::sphere_mesh(5);
+  PointSet cloud = sample_with_normals(sphere, 20000);
+  std::size_t inverted = 0;
+  for (std::size_t i = 0; i < cloud.size(); i += 40) cloud.normals[i] = -1.0 * cloud.normals[i], ++inverted;
+  ReconstructOptions options;
+  options.feature_mode = FeatureMode::None;
+  const ReconstructResult repaired = reconstruct(cloud, options);
+  EXPECT_EQ(repaired.normal_source, "input");  // 97.5% agree with the MST: used as given
+  std::printf("sign repair: %zu inverted, %zu flipped\n", inverted, repaired.sign_repaired_normals);
+  EXPECT_GE(repaired.sign_repaired_normals, inverted - inverted / 50);
+  EXPECT_LE(repaired.sign_repaired_normals, inverted + inverted / 50);
+  expect_valid_and_close(repaired.mesh, sphere, 0.005);
+  options.repair_normal_signs = false;
+  EXPECT_EQ(reconstruct(cloud, options).sign_repaired_normals, 0u);
 }
 
 TEST(Reconstruct, RejectsBadDeltaAndExplodingFacetCounts) {
