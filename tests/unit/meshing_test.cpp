@@ -35,6 +35,18 @@ class SphereWithFin : public ImplicitSurface {
   Vec3 half_;
 };
 
+/// |z| + 1e-7: a kinked function that touches zero without changing sign.
+/// Its central-difference gradient over a step wider than |z| is tiny, so
+/// Newton bounces between z = -1e-7 and z = 2e-3, as it did on CGAL's
+/// piecewise-linear Poisson function next to a cube edge.
+class KinkedNearZero : public ImplicitSurface {
+ public:
+  double value(const Vec3& p) const override { return std::abs(p[2]) + 1e-7; }
+  Vec3 bounding_center() const override { return {0, 0, 0}; }
+  double bounding_radius() const override { return 1; }
+  Vec3 inside_point() const override { return {0, 0, 0}; }
+};
+
 double farthest_x(const SurfaceMesh& mesh) {
   double x = -1e9;
   for (const Vec3& v : mesh.vertices) x = std::max(x, v[0]);
@@ -42,6 +54,20 @@ double farthest_x(const SurfaceMesh& mesh) {
 }
 
 }  // namespace
+
+// Projection (the gap of 7.5) returns the point the first-order estimate
+// |f|/|g| puts nearest to the zero set when Newton never brackets a root,
+// instead of failing (a failure leaves that stretch of a polyline
+// unprotected); it still fails when no point comes near.
+TEST(Projection, NewtonBouncingNextToTheZeroSetStillProjects) {
+  const KinkedNearZero surface;
+  Vec3 q;
+  ASSERT_TRUE(project_onto_surface(surface, {0.1, 0.2, 0.3}, 0.5, 1.0, 1e-3, q));
+  EXPECT_LT(std::abs(q[2]), 3e-3);
+  EXPECT_NEAR(q[0], 0.1, 1e-12);
+  EXPECT_FALSE(project_onto_surface(surface, {0.1, 0.2, 0.3}, 0.1, 1.0, 1e-3, q));  // tolerance 1e-3 < 2e-3
+  EXPECT_FALSE(project_onto_surface(surface, {0.1, 0.2, 0.3}, 0.5, 0.2, 1e-3, q));  // beyond max_distance
+}
 
 // A fin of a thirteenth of the facet size: the refinement steps over it (a
 // Voronoi edge through both of its sides shows no sign change). Data seeds
