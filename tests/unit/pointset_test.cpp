@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "fixtures.h"
@@ -343,4 +344,65 @@ TEST(LocalThickness, FindsTheOppositeSheetOnly) {
   for (double x : local_thickness(one, 0.01, 0.3)) EXPECT_TRUE(std::isinf(x));
   EXPECT_THROW(local_thickness(PointSet{two.points, {}, {}}, 0.01, 0.3), InvalidArgument);
   EXPECT_THROW(local_thickness(two, 0.3, 0.1), InvalidArgument);
+}
+
+// Over a wide range (max_thickness / min_thickness = 40, a coarse mesh) the
+// search runs along each normal line instead of through one large ball: the
+// same thickness as the rule applied to every pair of points.
+TEST(LocalThickness, SearchAlongTheNormalLineMatchesAllPairs) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // A wall 0.15 thick, a gap of 0.3 above it, and a side wall, each sheet
+  // farther from the others than its 24 neighbours reach (so the noise
+  // estimate, which raises min_thickness, stays 0).
+  PointSet sheets;
+  for (int i = 0; i < 2400; ++i) {
+    const double a = unit(random), b = unit(random);
+    switch (i % 4) {
+      case 0: sheets.points.push_back({a, b, 0.0}), sheets.normals.push_back({0, 0, -1}); break;
+      case 1: sheets.points.push_back({a, b, 0.15}), sheets.normals.push_back({0, 0, 1}); break;
+      case 2: sheets.points.push_back({a, b, 0.45}), sheets.normals.push_back({0, 0, -1}); break;
+      default: sheets.points.push_back({1.2, a, 0.45 * b}), sheets.normals.push_back({1, 0, 0}); break;
+    }
+  }
+  const double min_thickness = 0.01, max_thickness = 0.6;
+  const std::vector<double> fast = local_thickness(sheets, min_thickness, max_thickness);
+  const double cos_parallel = std::cos(25.0 * M_PI / 180.0), cos_cone = std::cos(30.0 * M_PI / 180.0);
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < sheets.size(); ++i) {
+    const Vec3& p = sheets.points[i];
+    const Vec3& n = sheets.normals[i];
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t facing = 0;
+    for (std::size_t j = 0; j < sheets.size(); ++j) {
+      const Vec3 d = sheets.points[j] - p;
+      const double length = norm(d);
+      if (!(length > min_thickness) || length >= best || length > max_thickness) continue;
+      if (std::abs(dot(n, sheets.normals[j])) < cos_parallel || std::abs(dot(d, n)) < cos_cone * length) continue;
+      best = length, facing = j;
+    }
+    if (std::isfinite(best)) {
+      const Vec3 half = 0.5 * (p + sheets.points[facing]);
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Vec3& q : sheets.points) nearest = std::min(nearest, norm(q - half));
+      if (nearest * nearest < 0.09 * best * best) best = std::numeric_limits<double>::infinity();
+    }
+    finite += std::isfinite(best);
+    ASSERT_EQ(fast[i], best) << "point " << i;
+  }
+  EXPECT_GT(finite, 1000u);  // the wall's and the gap's points
+  // Lone pairs, facing each other at up to 29 degrees off the normal and at
+  // every distance of the range: the balls along the line cover the cone.
+  PointSet pairs;
+  std::vector<double> expected;
+  for (double angle : {0.0, 10.0, 20.0, 29.0})
+    for (double length = 0.012; length < max_thickness; length *= 1.13) {
+      const Vec3 p{10.0 * static_cast<double>(pairs.size()), 0, 0};
+      const double a = angle * M_PI / 180;
+      pairs.points.push_back(p), pairs.normals.push_back({0, 0, 1});
+      pairs.points.push_back(p + Vec3{length * std::sin(a), 0, -length * std::cos(a)}), pairs.normals.push_back({0, 0, -1});
+      expected.push_back(length);
+    }
+  const std::vector<double> t = local_thickness(pairs, min_thickness, max_thickness);
+  for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(t[2 * k], expected[k], 1e-12) << "pair " << k;
 }
