@@ -51,7 +51,10 @@ Command add_clean(CLI::App& app) {
   auto g3 = "3. Smoothing";
   sub->add_option("--smooth", o->smooth_k, "Jet smoothing over K nearest neighbours (App. A.6; 24 for real scans)")->group(g3);
   auto g4 = "4. Normals";
-  sub->add_option("--normals", o->normals, "Estimate normals: pca or jet (App. A.7)")->check(CLI::IsMember({"pca", "jet"}))->group(g4);
+  sub->add_option("--normals", o->normals,
+                  "Estimate normals: pca or jet (App. A.7), or shifted: jet normals (oriented if --orient), then replaced by the "
+                  "best-fitting 10-point plane among those of the 18 nearest points, which does not straddle creases (clean or nearly clean clouds)")
+      ->check(CLI::IsMember({"pca", "jet", "shifted"}))->group(g4);
   sub->add_option("--normal-k", o->normal_k, "Neighbours for --normals")->capture_default_str()->group(g4);
   sub->add_flag("--orient", o->orient, "Orient normals by minimum spanning tree (App. A.8); unorientable points are removed")->group(g4);
   sub->add_option("--orient-k", o->orient_k, "Neighbours for --orient")->capture_default_str()->group(g4);
@@ -74,6 +77,7 @@ Command add_clean(CLI::App& app) {
     if (o->smooth_k != 0) options.smoothing = JetSmoothingOptions{o->smooth_k};
     if (!o->normals.empty())
       options.normals = NormalEstimationOptions{o->normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, o->normal_k};
+    if (o->normals == "shifted") options.crease_aware_normals = ShiftedNormalOptions{};
     if (o->orient)
       options.orientation = o->orient_method == "cgal" ? CleanOptions::Orientation::CgalMst : CleanOptions::Orientation::TangentMst;
     options.orient_k = o->orient_k;

@@ -141,6 +141,10 @@ struct CleanOptions {
   std::uint64_t seed = 0;                             ///< of the random simplification
   std::optional<JetSmoothingOptions> smoothing;       ///< App. A.6
   std::optional<NormalEstimationOptions> normals;     ///< App. A.7
+  /// After `normals` (and the orientation): crease-aware normals from shifted
+  /// neighbourhoods, each signed like the normal it replaces (for clean or
+  /// nearly clean clouds; see estimate_shifted_normals_at).
+  std::optional<ShiftedNormalOptions> crease_aware_normals;
   enum class Orientation { None, TangentMst, CgalMst };
   Orientation orientation = Orientation::None;        ///< App. A.8
   int orient_k = 18;

@@ -21,7 +21,8 @@ void bind_pointset(py::module_& m) {
            std::uint64_t seed, int smooth, std::optional<std::string> normals, int normal_k, bool orient, int orient_k,
            const std::string& orient_method, const py::object& progress) {
           PointSet set = to_point_set(points, point_normals);
-          if (normals && *normals != "pca" && *normals != "jet") throw InvalidArgument("normals must be 'pca' or 'jet'");
+          if (normals && *normals != "pca" && *normals != "jet" && *normals != "shifted")
+            throw InvalidArgument("normals must be 'pca', 'jet' or 'shifted'");
           if (orient_method != "tangent" && orient_method != "cgal") throw InvalidArgument("orient_method must be 'tangent' or 'cgal'");
           CleanOptions options;
           if (outliers) options.outliers = PercentageOutlierOptions{outlier_k, *outliers};
@@ -31,6 +32,7 @@ void bind_pointset(py::module_& m) {
           options.seed = seed;
           if (smooth != 0) options.smoothing = JetSmoothingOptions{smooth};
           if (normals) options.normals = NormalEstimationOptions{*normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, normal_k};
+          if (normals && *normals == "shifted") options.crease_aware_normals = ShiftedNormalOptions{};
           if (orient) options.orientation = orient_method == "cgal" ? CleanOptions::Orientation::CgalMst : CleanOptions::Orientation::TangentMst;
           options.orient_k = orient_k;
           options.check();
@@ -51,7 +53,8 @@ void bind_pointset(py::module_& m) {
 outliers: remove this % of points with the largest average squared kNN distance (A.4), over outlier_k neighbours;
 outliers_sigma: remove points beyond mean + S standard deviations of that distance (6.3.1), over sigma_k neighbours;
 grid: keep one point per cell of this size, in multiples of the average spacing (A.5); random: remove this % at random (seed);
-smooth: jet smoothing over this many neighbours (A.6); normals: 'pca' or 'jet' over normal_k neighbours (A.7);
+smooth: jet smoothing over this many neighbours (A.6); normals: 'pca' or 'jet' over normal_k neighbours (A.7), or 'shifted' (jet, then
+crease-aware planes from shifted neighbourhoods, signed like the jet normals);
 orient: MST orientation over orient_k neighbours (A.8), orient_method 'tangent' or 'cgal'.)");
 }
 

@@ -19,6 +19,17 @@ def test_clean_uses_the_cli_names_and_defaults(cube_cloud):
         sm.clean(cube_cloud.points, smooth=3)
 
 
+def test_clean_crease_aware_normals_are_face_normals(cube_cloud):
+    # The cube's faces are axis-aligned: a crease-aware normal has one coordinate near +-1.
+    jet = sm.clean(cube_cloud.points, normals="jet", orient=True).normals
+    shifted = sm.clean(cube_cloud.points, normals="shifted", orient=True).normals
+    def off_axis(n):
+        return np.mean(np.abs(n).max(axis=1) < np.cos(np.radians(10)))
+    assert off_axis(shifted) < 0.01 < off_axis(jet)
+    with pytest.raises(sm.InvalidArgument, match="shifted"):
+        sm.clean(cube_cloud.points, normals="hough")
+
+
 def test_features_of_a_cube_are_its_twelve_edges(cube, cube_cloud):
     f = sm.extract_features(cube_cloud.points)
     assert f.point_classes.shape == (len(cube_cloud.points),)

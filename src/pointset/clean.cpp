@@ -16,6 +16,7 @@ void CleanOptions::check() const {
   if (random_percentage && !(*random_percentage >= 0 && *random_percentage <= 100))
     throw InvalidArgument("the random simplification percentage must be in [0, 100]");
   if (smoothing && smoothing->k < 6) throw InvalidArgument("jet smoothing needs at least 6 neighbours to fit a quadric");
+  if (crease_aware_normals && !normals) throw InvalidArgument("crease-aware normals are signed like estimated ones: estimate normals too");
 }
 
 CleanStats clean_point_set(PointSet& points, const CleanOptions& options, const Progress& progress) {
@@ -52,6 +53,17 @@ CleanStats clean_point_set(PointSet& points, const CleanOptions& options, const 
       stats.unoriented_removed = orient_normals_mst(points, {options.orient_k, true}, progress);
     else
       stats.orientation_components = orient_normals_tangent_mst(points, options.orient_k, progress);
+  }
+  // After the orientation: crease-aware normals turn by 90 degrees across a
+  // crease, and the MST would lose their sign there.
+  if (options.crease_aware_normals) {
+    StageTimer stage(stats.stages, "crease-aware normals");
+    PointSet shifted{points.points, {}, {}};
+    std::vector<std::uint32_t> all(points.size());
+    for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    estimate_shifted_normals_at(shifted, all, *options.crease_aware_normals);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      points.normals[i] = dot(shifted.normals[i], points.normals[i]) < 0 ? -1.0 * shifted.normals[i] : shifted.normals[i];
   }
   if (points.empty()) throw InvalidInput("no point is left after cleaning");
   stats.output = points.size();
