@@ -103,7 +103,10 @@ void estimate_normals_at(PointSet& points, const std::vector<std::uint32_t>& ind
 /// k-neighbourhoods of its `candidates` nearest points (itself included),
 /// the one minimising RMS residual + the point's distance to the plane. Next
 /// to a crease some shifted neighbourhood lies on the point's own face, where
-/// a centred one straddles both. Unoriented; the other normals are kept.
+/// a centred one straddles both. A point that already has a (non-zero) normal
+/// keeps its sign: orient smoothly turning normals first (across a crease the
+/// new ones turn by 90 degrees, and an MST loses their sign there). The
+/// other points' normals are kept.
 struct ShiftedNormalOptions {
   int k = 10;           ///< points per fitted plane (at least 6)
   int candidates = 18;  ///< nearest points whose planes compete

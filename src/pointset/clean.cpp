@@ -58,12 +58,9 @@ CleanStats clean_point_set(PointSet& points, const CleanOptions& options, const 
   // crease, and the MST would lose their sign there.
   if (options.crease_aware_normals) {
     StageTimer stage(stats.stages, "crease-aware normals");
-    PointSet shifted{points.points, {}, {}};
     std::vector<std::uint32_t> all(points.size());
     for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-    estimate_shifted_normals_at(shifted, all, *options.crease_aware_normals);
-    for (std::size_t i = 0; i < points.size(); ++i)
-      points.normals[i] = dot(shifted.normals[i], points.normals[i]) < 0 ? -1.0 * shifted.normals[i] : shifted.normals[i];
+    estimate_shifted_normals_at(points, all, *options.crease_aware_normals);  // signed like the estimated normals
   }
   if (points.empty()) throw InvalidInput("no point is left after cleaning");
   stats.output = points.size();

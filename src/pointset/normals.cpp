@@ -162,7 +162,8 @@ void estimate_shifted_normals_at(PointSet& points, const std::vector<std::uint32
       const double score = residual[j] + std::abs(planes[j].normal.dot(x - planes[j].point));
       if (score < best) best = score, normal = {planes[j].normal(0), planes[j].normal(1), planes[j].normal(2)};
     }
-    points.normals[indices[m]] = normal;
+    Vec3& n = points.normals[indices[m]];
+    n = dot(normal, n) < 0 ? -1.0 * normal : normal;
   });
 }
 
