@@ -1,5 +1,7 @@
 #include "fixtures.h"
 
+#include "sharpmesh/eval.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -8,6 +10,14 @@
 #include <map>
 
 namespace sharpmesh::test {
+
+PointSet sample_with_normals(const SurfaceMesh& mesh, std::size_t count, std::uint64_t seed) {
+  SampleOptions options;
+  options.count = count;
+  options.seed = seed;
+  options.with_normals = true;
+  return sample_mesh(mesh, options);
+}
 
 SurfaceMesh cube_mesh(double h) {
   SurfaceMesh m;

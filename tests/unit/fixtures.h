@@ -8,6 +8,9 @@
 
 namespace sharpmesh::test {
 
+/// `count` points sampled on the mesh (fixed seed), each with its facet's normal.
+PointSet sample_with_normals(const SurfaceMesh& mesh, std::size_t count, std::uint64_t seed);
+
 /// Axis-aligned cube [-h, h]^3 made of 12 outward-oriented triangles.
 SurfaceMesh cube_mesh(double half_size = 0.5);
 /// The cube [-1, 1]^3 with its edge at x = y = 1 cut by the plane

@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <thread>
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/implicit.h"
 
 #include "sharpmesh/meshing.h"
+#include "fixtures.h"
 
 using namespace sharpmesh;
 
@@ -181,4 +184,42 @@ TEST(FeatureSeparation, DropsTheShorterOfTwoCloseCurvesAndSelfCloseTraces) {
   EXPECT_EQ(drop_close_polylines(folded, 2.0, dropped), 1u);
   ASSERT_EQ(folded.size(), 1u);
   EXPECT_DOUBLE_EQ(folded[0][0][0], 30.0);
+}
+
+// The start-cell grid changes where each point location starts, not where it
+// ends: the values are CGAL's, in any query order and from several threads.
+// (Inside the triangulation's hull: beyond it CGAL returns the value at a
+// vertex of whichever infinite cell its walk ends in.)
+TEST(PoissonFunction, StartCellGridGivesCgalsValuesInAnyOrderAndFromThreads) {
+  const PointSet points = test::sample_with_normals(test::cube_mesh(0.5), 10000, 3);
+  PoissonOptions cgal_walk;
+  cgal_walk.start_cell_grid = false;
+  const auto reference = poisson_surface(points, cgal_walk);
+  const auto fast = poisson_surface(points);
+
+  std::mt19937_64 generator(5);
+  std::uniform_real_distribution<double> coordinate(-0.6, 0.6);
+  std::vector<Vec3> queries(40000);
+  for (std::size_t i = 0; i < queries.size(); i += 2) {  // random places, and a neighbour 1e-3 away
+    queries[i] = {coordinate(generator), coordinate(generator), coordinate(generator)};
+    queries[i + 1] = queries[i] + Vec3{1e-3, 0, 0};
+  }
+  std::vector<double> expected(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i) expected[i] = reference->value(queries[i]);
+  EXPECT_LT(fast->value({0, 0, 0}), 0);
+  EXPECT_GT(fast->value({0.7, 0.7, 0.7}), 0);
+
+  std::vector<std::size_t> order(queries.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), generator);
+  std::vector<double> got(queries.size());
+  auto evaluate = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) got[order[k]] = fast->value(queries[order[k]]);
+  };
+  std::thread other(evaluate, 0, order.size() / 2);
+  evaluate(order.size() / 2, order.size());
+  other.join();
+  double largest = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) largest = std::max(largest, std::abs(got[i] - expected[i]));
+  EXPECT_LT(largest, 1e-12);
 }

@@ -196,11 +196,7 @@ TEST(Normals, EstimatesAtGivenPointsOnly) {
 // one (the best-fitting plane among the neighbours' neighbourhoods) lies on
 // the point's own face. A cube's points within one spacing of an edge.
 TEST(Normals, ShiftedNeighbourhoodsKeepTheFaceNormalNextToACrease) {
-  SampleOptions sampling;
-  sampling.count = 24000;
-  sampling.seed = 5;
-  sampling.with_normals = true;
-  const PointSet truth = sample_mesh(test::cube_mesh(1.0), sampling);  // spacing about 0.03
+  const PointSet truth = test::sample_with_normals(test::cube_mesh(1.0), 24000, 5);  // spacing about 0.03
   std::vector<std::uint32_t> near_edges;
   for (std::uint32_t i = 0; i < truth.size(); ++i) {
     int at_face = 0;
@@ -229,11 +225,7 @@ TEST(Normals, ShiftedNeighbourhoodsKeepTheFaceNormalNextToACrease) {
 // The toolbox's `clean --normals shifted --orient`: jet normals oriented by
 // the tangent MST, then crease-aware ones with their signs.
 TEST(Clean, CreaseAwareNormalsAreOrientedAndSharpAtTheEdges) {
-  SampleOptions sampling;
-  sampling.count = 24000;
-  sampling.seed = 5;
-  sampling.with_normals = true;
-  const PointSet truth = sample_mesh(test::cube_mesh(1.0), sampling);
+  const PointSet truth = test::sample_with_normals(test::cube_mesh(1.0), 24000, 5);
   PointSet cloud{truth.points, {}, {}};
   CleanOptions options;
   options.normals = NormalEstimationOptions{NormalMethod::Jet, 18};
@@ -303,11 +295,7 @@ TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
   // opposite face, whose normals are parallel (weight 0 for CGAL's MST).
   SurfaceMesh slab = test::cube_mesh(0.5);
   for (Vec3& v : slab.vertices) v[2] *= 0.02;
-  SampleOptions sampling;
-  sampling.count = 20000;
-  sampling.seed = 4;
-  sampling.with_normals = true;
-  const PointSet truth = sample_mesh(slab, sampling);
+  const PointSet truth = test::sample_with_normals(slab, 20000, 4);
   PointSet cgal = truth, ours = truth;
   estimate_normals(cgal, {});
   estimate_normals(ours, {});

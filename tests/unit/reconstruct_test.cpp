@@ -260,24 +260,12 @@ TEST(FeaturePreservingReconstruction, SpikyStarTakesJetNormalsAtItsTips) {
   expect_valid_and_close(c.mesh, star, 0.04);
 }
 
-namespace {
-
-PointSet sample_with_normals(const SurfaceMesh& mesh, std::size_t n) {
-  SampleOptions options;
-  options.count = n;
-  options.seed = 11;
-  options.with_normals = true;
-  return sample_mesh(mesh, options);
-}
-
-}  // namespace
-
 // Normals read from a file are checked: consistent ones are used as given;
 // per-face sign flips (CGAL's cube.pwn) are re-oriented; all-zero ones
 // (CGAL's blobby.xyz) are replaced by estimated normals.
 TEST(Reconstruct, InputNormalsAreCheckedBeforePoissonUsesThem) {
   const SurfaceMesh cube = test::cube_mesh(1.0);
-  const PointSet consistent = sample_with_normals(cube, 30000);
+  const PointSet consistent = test::sample_with_normals(cube, 30000, 11);
   ASSERT_TRUE(consistent.has_normals());
   ReconstructOptions options;  // the whole Chapter 7 pipeline, as in CubeKeepsTwelveSharpEdgesAndEightCorners
   options.delta = 6;
@@ -312,7 +300,7 @@ TEST(Reconstruct, InputNormalsAreCheckedBeforePoissonUsesThem) {
 // function instead and stays: Poisson dents the cap; not repaired.)
 TEST(Reconstruct, SignRepairFlipsTheNormalsThePoissonFunctionContradicts) {
   const SurfaceMesh sphere = test::sphere_mesh(5);
-  PointSet cloud = sample_with_normals(sphere, 20000);
+  PointSet cloud = test::sample_with_normals(sphere, 20000, 11);
   std::size_t inverted = 0;
   for (std::size_t i = 0; i < cloud.size(); i += 40) cloud.normals[i] = -1.0 * cloud.normals[i], ++inverted;
   ReconstructOptions options;
