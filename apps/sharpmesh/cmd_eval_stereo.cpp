@@ -14,7 +14,8 @@ namespace sharpmesh::cli {
 Command add_eval_stereo(CLI::App& app) {
   struct Options {
     std::vector<std::string> meshes, labels;
-    std::string scene, reference, cameras, json, plot;
+    std::string scene, reference, cameras, json, plot, missing;
+    double missing_threshold = 0.005;
     StereoEvalOptions eval;
   };
   auto o = std::make_shared<Options>();
@@ -37,6 +38,11 @@ Command add_eval_stereo(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--json", o->json, "Write the curves as JSON");
   sub->add_option("--plot", o->plot, "Write a PNG plot of the curves");
+  sub->add_option("--missing", o->missing,
+                  "Write the visible reference samples the mesh misses (farther than --missing-threshold) as a point cloud; one MESH only");
+  sub->add_option("--missing-threshold", o->missing_threshold, "Distance beyond which a sample is missing, fraction of the scene size")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   common->add_to(*sub);
   auto run = [o, common] {
     if (o->scene.empty() && o->reference.empty()) throw InvalidArgument("give --scene DIR, or --reference MESH with --cameras MODEL");
@@ -44,6 +50,8 @@ Command add_eval_stereo(CLI::App& app) {
     o->eval.check();
     check_output(o->json, "JSON");
     check_output(o->plot, "plot");
+    check_output(o->missing, "missing-samples");
+    if (!o->missing.empty() && o->meshes.size() != 1) throw InvalidArgument("--missing needs exactly one MESH");
     check_output(common->report, "report");
     const auto start = std::chrono::steady_clock::now();
     const std::string reference_path = o->scene.empty() ? o->reference : o->scene + "/ground_truth.ply";
@@ -89,6 +97,12 @@ Command add_eval_stereo(CLI::App& app) {
       write_curve_plot(o->plot, o->eval.thresholds, labels, "error threshold, % of the scene size", panels);
     }
     if (!o->json.empty()) write_text_file(o->json, report.dump(2) + "\n");
+    if (!o->missing.empty()) {
+      PointSet missing;
+      for (std::size_t k = 0; k < last.visible_reference.size(); ++k)
+        if (last.completeness_distances[k] > o->missing_threshold * last.scene_size) missing.points.push_back(last.visible_reference[k]);
+      write_point_set(o->missing, missing);
+    }
     write_report(common->report, report);
   };
   return {sub, run, common};

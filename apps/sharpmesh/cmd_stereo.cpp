@@ -58,6 +58,9 @@ Command add_stereo(CLI::App& app) {
                "Compare each track's d_k with the whole cloud's (the thesis); default: with its k neighbours' (median), so "
                "regions that are only sparser, e.g. far from the cameras, are kept");
   sub->add_option("--min-cone-angle", t.min_cone_angle, "t2: remove tracks whose cameras span a cone narrower than this, radians (6.3.1); 0: off, tracks seen in one image kept")->capture_default_str();
+  sub->add_flag("--cone-angle-on-fused", t.cone_angle_on_dense_points,
+                "Apply t2 to fused depth-map points too (COLMAP fused.ply + .vis); default: they skip it, their views are the depth "
+                "maps that agree on a point, not the views that triangulated it");
   sub->add_option("--smooth-k", t.smooth_k, "k of the Gaussian jet smoothing, 0: off (6.3.1)")->capture_default_str();
   sub->add_option("--track-ncc", o->stereo.track_photo.min_ncc,
                   "Beyond the thesis: remove tracks whose 7x7 windows in their views agree less (mean pairwise NCC) or have no texture")
@@ -181,6 +184,7 @@ Command add_stereo(CLI::App& app) {
         {"parameters",
          {{"merge_distance", so.tracks.merge_distance}, {"outlier_k", so.tracks.outlier_k},
           {"outlier_sigmas", so.tracks.outlier_sigmas}, {"outlier_relative", so.tracks.outlier_relative}, {"min_cone_angle_rad", so.tracks.min_cone_angle},
+          {"cone_angle_on_fused", so.tracks.cone_angle_on_dense_points},
           {"smooth_k", so.tracks.smooth_k}, {"track_photo", so.track_photo.enabled},
           {"track_ncc", so.track_photo.min_ncc}, {"track_window", 2 * so.track_photo.half_window + 1}, {"canny_sigma", so.depth_maps.canny_sigma},
           {"canny_low", so.depth_maps.canny_low}, {"canny_high", so.depth_maps.canny_high},
@@ -199,7 +203,7 @@ Command add_stereo(CLI::App& app) {
         {"counts",
          {{"views", model.cameras.size()},
           {"tracks", {{"input", ts.input}, {"merged", ts.merged}, {"removed_distance", ts.removed_distance},
-                      {"removed_cone_angle", ts.removed_cone},
+                      {"removed_cone_angle", ts.removed_cone}, {"cone_filter_skipped_fused", ts.cone_filter_skipped},
                       {"removed_photo", result.removed_track_photo}, {"kept", model.tracks.size()}}},
           {"depth_maps", {{"contour_tracks", result.contour_tracks}, {"contour_edges", result.contour_edges}}},
           {"soup", {{"lifted", result.soup_triangles}, {"unique", result.soup_unique},

@@ -135,6 +135,10 @@ struct StereoEvaluation {
   std::vector<double> completeness;     ///< fraction of visible reference samples within each threshold
   double accuracy_median = 0, completeness_median = 0;  ///< distances, data units
   std::size_t result_samples = 0, visible_reference_samples = 0;
+  /// The visible reference samples and their distances to the result (data
+  /// units): where the result is incomplete.
+  std::vector<Vec3> visible_reference;
+  std::vector<double> completeness_distances;
 };
 StereoEvaluation evaluate_stereo(const SurfaceMesh& mesh, const SurfaceMesh& reference, const std::vector<Camera>& cameras,
                                  const StereoEvalOptions& options = {}, const Progress& progress = {});

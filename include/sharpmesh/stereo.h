@@ -70,6 +70,10 @@ struct Track {
 struct StereoModel {
   std::vector<Camera> cameras;
   std::vector<Track> tracks;
+  /// The tracks are fused depth-map points (COLMAP's fused.ply with its .vis):
+  /// each one's views are the depth maps that agree on it, not the views
+  /// it was triangulated from.
+  bool dense_points = false;
   /// Throws InvalidInput naming `where` when a track refers to a missing view,
   /// has a non-finite position, or pixels that do not match its views.
   void validate(const std::string& where) const;

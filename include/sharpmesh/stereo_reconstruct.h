@@ -37,6 +37,11 @@ struct TrackPreprocessOptions {
   /// track of a region that is only sparser, e.g. ground far from the cameras.
   bool outlier_relative = true;
   double min_cone_angle = 0.08;   ///< t2, radians
+  /// t2 measures how wide a baseline triangulated a track (6.3.1). Fused
+  /// depth-map points (StereoModel::dense_points) were triangulated by their
+  /// depth maps' own source views, which their view lists do not name, so by
+  /// default they skip it (beyond the thesis, whose tracks are all matches).
+  bool cone_angle_on_dense_points = false;
   int smooth_k = 85;              ///< k of the jet smoothing; 0 disables smoothing
   void check() const;
 };
@@ -46,6 +51,7 @@ struct TrackPreprocessStats {
   std::size_t merged = 0;            ///< tracks absorbed into a neighbour
   std::size_t removed_distance = 0;  ///< 3-sigma rule
   std::size_t removed_cone = 0;      ///< cone angle below t2 (includes single-view tracks)
+  bool cone_filter_skipped = false;  ///< dense points, see cone_angle_on_dense_points
   std::size_t output = 0;
   double half_diagonal = 0;          ///< beta, of the input tracks
 };

@@ -10,7 +10,7 @@ void bind_stereo(py::module_& m) {
   const StereoReconstructionOptions d;
   m.def("stereo",
         [](const std::string& model_path, const std::string& images, const std::string& tracks, double merge_distance,
-           int outlier_k, bool outlier_global, int smooth_k, double min_cone_angle, double canny_sigma, double canny_low, double canny_high,
+           int outlier_k, bool outlier_global, int smooth_k, double min_cone_angle, bool cone_angle_on_fused, double canny_sigma, double canny_low, double canny_high,
            bool canny_fixed,
            int max_crossings, double grazing_angle, double ncc, bool no_photo, bool no_track_photo, double angle, double size,
            double distance, std::uint32_t seed, bool no_fill, double max_hole, const py::object& progress) {
@@ -20,6 +20,7 @@ void bind_stereo(py::module_& m) {
           o.tracks.outlier_relative = !outlier_global;
           o.tracks.smooth_k = smooth_k;
           o.tracks.min_cone_angle = min_cone_angle;
+          o.tracks.cone_angle_on_dense_points = cone_angle_on_fused;
           o.track_photo.enabled = !no_track_photo;
           o.depth_maps.canny_sigma = canny_sigma;
           o.depth_maps.canny_low = canny_low;
@@ -48,6 +49,7 @@ void bind_stereo(py::module_& m) {
           counts["views"] = model.cameras.size();
           counts["tracks_input"] = r.tracks.input;
           counts["tracks_kept"] = model.tracks.size();
+          counts["cone_filter_skipped_fused"] = r.tracks.cone_filter_skipped;
           counts["soup_triangles"] = r.soup_triangles;
           counts["soup_kept"] = r.filters.output;
           counts["facets"] = r.meshing.mesh.faces.size();
@@ -66,6 +68,7 @@ void bind_stereo(py::module_& m) {
         py::arg("merge_distance") = d.tracks.merge_distance, py::arg("outlier_k") = d.tracks.outlier_k,
         py::arg("outlier_global") = !d.tracks.outlier_relative,
         py::arg("smooth_k") = d.tracks.smooth_k, py::arg("min_cone_angle") = d.tracks.min_cone_angle,
+        py::arg("cone_angle_on_fused") = d.tracks.cone_angle_on_dense_points,
         py::arg("canny_sigma") = d.depth_maps.canny_sigma, py::arg("canny_low") = d.depth_maps.canny_low,
         py::arg("canny_high") = d.depth_maps.canny_high, py::arg("canny_fixed") = false, py::arg("max_crossings") = d.filters.max_crossings,
         py::arg("grazing_angle") = d.filters.grazing_angle, py::arg("ncc") = d.filters.ncc_threshold,

@@ -66,8 +66,10 @@ StereoEvaluation evaluate_stereo(const SurfaceMesh& mesh, const SurfaceMesh& ref
   for (double t : options.thresholds) e.thresholds.push_back(t * e.scene_size);
   report_progress(progress, "completeness", 0.3);
   const detail::TriangleDistance to_mesh(mesh);
-  e.completeness = cumulative(to_mesh.distances(seen), e.thresholds, e.completeness_median);
+  e.completeness_distances = to_mesh.distances(seen);
+  e.completeness = cumulative(e.completeness_distances, e.thresholds, e.completeness_median);
   e.visible_reference_samples = seen.size();
+  e.visible_reference = std::move(seen);
   report_progress(progress, "accuracy", 0.6);
   sampling.seed = options.seed + 1;
   const std::vector<Vec3> result_samples = sample_mesh(mesh, sampling).points;

@@ -479,6 +479,7 @@ StereoModel read_colmap_fused(const std::string& ply_path, const std::vector<Cam
     throw InvalidInput(vis_path + ": lists " + format_number(count) + " points but " + ply_path + " has " + format_number(ply.points.size()));
   StereoModel model;
   model.cameras = cameras;
+  model.dense_points = true;
   model.tracks.resize(ply.points.size());
   for (std::size_t i = 0; i < ply.points.size(); ++i) {
     Track& t = model.tracks[i];

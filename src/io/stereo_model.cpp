@@ -30,7 +30,9 @@ StereoModel load_stereo_model(const std::string& model_path, const std::string& 
   if (!tracks_path.empty()) {
     std::error_code ec;
     if (fs::exists(tracks_path + ".vis", ec)) {
-      model.tracks = read_colmap_fused(tracks_path, model.cameras).tracks;
+      StereoModel fused = read_colmap_fused(tracks_path, model.cameras);
+      model.tracks = std::move(fused.tracks);
+      model.dense_points = true;
     } else {
       model.tracks = read_tracks_ply(tracks_path);
     }

@@ -47,6 +47,8 @@ TrackPreprocessStats preprocess_tracks(StereoModel& model, const TrackPreprocess
   stats.merged = merge_tracks(model.tracks, options.merge_distance * stats.half_diagonal);
 
   // Cone angle first: it is per track and also drops single-view tracks.
+  stats.cone_filter_skipped = model.dense_points && !options.cone_angle_on_dense_points && options.min_cone_angle > 0;
+  const double min_cone_angle = stats.cone_filter_skipped ? 0.0 : options.min_cone_angle;
   std::vector<Vec3> centers_of_view(model.cameras.size());
   for (std::size_t v = 0; v < model.cameras.size(); ++v) centers_of_view[v] = model.cameras[v].center();
   {
@@ -56,7 +58,7 @@ TrackPreprocessStats preprocess_tracks(StereoModel& model, const TrackPreprocess
     for (Track& t : model.tracks) {
       centers.clear();
       for (std::uint32_t v : t.views) centers.push_back(centers_of_view[v]);
-      if (options.min_cone_angle == 0 || (t.views.size() >= 2 && cone_angle(t.position, centers) >= options.min_cone_angle))
+      if (min_cone_angle == 0 || (t.views.size() >= 2 && cone_angle(t.position, centers) >= min_cone_angle))
         kept.push_back(std::move(t));
       else
         ++stats.removed_cone;

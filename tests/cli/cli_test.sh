@@ -162,7 +162,8 @@ PY
   eval-stereo-bad)
     $bin sample "$data/meshes/cube.off" -n 100 -o c.ply -q
     expect_error 1 "no/scene" "e.json" $bin eval-stereo "$data/meshes/cube.off" --scene no/scene --json e.json
-    expect_error 2 "reference" "" $bin eval-stereo "$data/meshes/cube.off" ;;
+    expect_error 2 "reference" "" $bin eval-stereo "$data/meshes/cube.off"
+    expect_error 2 "exactly one MESH" "miss.ply" $bin eval-stereo "$data/meshes/cube.off" c.ply --scene no/scene --missing miss.ply ;;
   stereo)  # issue 6: a generated scene end to end, with its intermediate outputs and report
     $bin make-scene sc --views 6 --width 320 --height 240 --samples 12000 --seed 3 -q || fail "make-scene failed"
     $bin stereo sc -o m.ply --soup soup.ply --tracks-out t.ply --report r.json -q || fail "stereo failed"
@@ -182,6 +183,13 @@ PY
     $bin eval-stereo m.ply --scene sc --samples 20000 --json e.json -q || fail "eval-stereo failed"
     python3 -c "import json; r=json.load(open('e.json'))['results'][0]; assert r['accuracy'][4] > 0.95 and r['completeness'][5] > 0.8, r" \
       || fail "inaccurate or incomplete stereo mesh"
+    # --missing: the visible reference samples farther than 0.5% (the 4th threshold) from the mesh.
+    $bin eval-stereo m.ply --scene sc --samples 20000 --missing miss.ply -q || fail "eval-stereo --missing failed"
+    python3 -c "
+import json
+e = json.load(open('e.json')); n = e['visible_reference_samples']; c = e['results'][0]['completeness'][3]
+count = int([l for l in open('miss.ply', 'rb').read(400).decode('latin-1').split('\\n') if l.startswith('element vertex')][0].split()[2])
+assert abs(count - round(n * (1 - c))) <= 1 and count > 0, (count, n, c)" || fail "--missing does not hold the samples completeness misses"
     # --no-fill: the thesis's soup alone, no fill stage, no more complete.
     $bin stereo sc -o nofill.ply --no-fill --report rn.json -q || fail "stereo --no-fill failed"
     $bin eval-stereo nofill.ply --scene sc --samples 20000 --json en.json -q || fail "eval-stereo failed"

@@ -174,6 +174,7 @@ TEST(Colmap, FusedVisIndicesFollowFileOrderNotImageIds) {
   write_colmap_fused(dir.path("fused.ply"), fused, {{0, 0, 1}});
   std::vector<Vec3> normals;
   const StereoModel back = read_colmap_fused(dir.path("fused.ply"), sparse.cameras, &normals);
+  EXPECT_TRUE(back.dense_points);
   ASSERT_EQ(back.tracks.size(), 1u);
   ASSERT_EQ(back.tracks[0].views.size(), 2u);
   EXPECT_EQ(back.cameras[back.tracks[0].views[0]].image_name, "side.png");

@@ -66,6 +66,51 @@ TEST(TrackPreprocessing, MergesCloseTracksWithTheUnionOfTheirViews) {
   EXPECT_EQ(merge_tracks(tracks, 0.01), 0u);
 }
 
+// The grid search gives the rule of 6.3.1 exactly: each track, in input
+// order, joins its nearest kept track when that one is closer than t1 (a
+// brute-force reference, with clusters across grid cells and negative coordinates).
+TEST(TrackPreprocessing, MergingMatchesTheNearestKeptTrackRule) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1, 1), jitter(-0.04, 0.04);
+  std::vector<Track> tracks;
+  for (int i = 0; i < 1500; ++i) {
+    const Vec3 centre{u(rng), u(rng), u(rng)};
+    const int copies = 1 + static_cast<int>(rng() % 3);
+    for (int c = 0; c < copies; ++c)
+      tracks.push_back(track(centre + Vec3{jitter(rng), jitter(rng), jitter(rng)}, {static_cast<std::uint32_t>(c)}));
+  }
+  const double t1 = 0.05;
+  std::vector<std::uint32_t> kept;  // brute force
+  std::vector<std::uint32_t> owner(tracks.size());
+  for (std::uint32_t i = 0; i < tracks.size(); ++i) {
+    std::uint32_t best = UINT32_MAX;
+    double best_d2 = t1 * t1;
+    for (std::uint32_t k : kept) {
+      const Vec3 d = tracks[k].position - tracks[i].position;
+      if (dot(d, d) < best_d2) {
+        best_d2 = dot(d, d);
+        best = k;
+      }
+    }
+    if (best == UINT32_MAX) kept.push_back(i);
+    owner[i] = best == UINT32_MAX ? i : best;
+  }
+  std::vector<Vec3> expected;
+  for (std::uint32_t k : kept) {
+    Vec3 sum{0, 0, 0};
+    int n = 0;
+    for (std::uint32_t i = 0; i < tracks.size(); ++i)
+      if (owner[i] == k) sum = sum + tracks[i].position, ++n;
+    expected.push_back((1.0 / n) * sum);
+  }
+  std::vector<Track> merged = tracks;
+  EXPECT_EQ(merge_tracks(merged, t1), tracks.size() - kept.size());
+  ASSERT_EQ(merged.size(), kept.size());
+  EXPECT_GT(tracks.size() - kept.size(), 500u);
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(merged[k].position[a], expected[k][a], 1e-12);
+}
+
 TEST(TrackPreprocessing, ConeAngleIsTheWidestAngleBetweenLinesOfSight) {
   EXPECT_NEAR(cone_angle({0, 0, 0}, {{1, 0, 0}, {0, 2, 0}}), M_PI / 2, 1e-12);
   EXPECT_NEAR(cone_angle({0, 0, 0}, {{1, 0, 0}, {1, 0.1, 0}, {1, 0.05, 0}}), std::atan(0.1), 1e-12);
@@ -103,6 +148,18 @@ TEST(TrackPreprocessing, SingleViewTracksAreRemovedAndNothingLeftIsAnError) {
   no_cone.min_cone_angle = 0;
   EXPECT_EQ(preprocess_tracks(all, no_cone).removed_cone, 0u);
   EXPECT_EQ(all.tracks.size(), 51u);
+  // Fused depth-map points skip t2 by default (their views did not triangulate them).
+  StereoModel dense = all;
+  dense.dense_points = true;
+  const TrackPreprocessStats dense_stats = preprocess_tracks(dense, {});
+  EXPECT_TRUE(dense_stats.cone_filter_skipped);
+  EXPECT_EQ(dense_stats.removed_cone, 0u);
+  EXPECT_EQ(dense.tracks.size(), 51u);
+  dense = all;
+  dense.dense_points = true;
+  TrackPreprocessOptions on_dense;
+  on_dense.cone_angle_on_dense_points = true;
+  EXPECT_EQ(preprocess_tracks(dense, on_dense).removed_cone, 50u);
   StereoModel empty = model;
   for (Track& t : empty.tracks) t.views = {0};
   std::vector<GreyImage> images(2, GreyImage{320, 240, std::vector<std::uint8_t>(320 * 240, 100)});
