@@ -50,7 +50,7 @@ Command add_eval_stereo(CLI::App& app) {
     o->eval.check();
     check_output(o->json, "JSON");
     check_output(o->plot, "plot");
-    check_output(o->missing, "missing-samples");
+    check_output(o->missing, "points");
     if (!o->missing.empty() && o->meshes.size() != 1) throw InvalidArgument("--missing needs exactly one MESH");
     check_output(common->report, "report");
     const auto start = std::chrono::steady_clock::now();
