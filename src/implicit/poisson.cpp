@@ -24,8 +24,9 @@ using Triangulation = Function::Triangulation;
 using Cell = Triangulation::Cell;
 using Cell_handle = Triangulation::Cell_handle;
 
-/// Evaluates CGAL's Poisson function (the same piecewise-linear interpolation
-/// as its operator(), bit for bit) with a better start for the point location.
+/// Evaluates CGAL's Poisson function (its operator()'s piecewise-linear
+/// interpolation and formula, so the same value whenever the walk ends in the
+/// same cell) with a better start for the point location.
 /// CGAL walks from the last cell it found; Mesh_3 asks at far-apart places
 /// (circumcentres of new cells, then the dual edges of new facets), and on
 /// fandisk 200k those walks took most of the refinement stage. Two grids of

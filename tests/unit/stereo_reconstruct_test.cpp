@@ -64,6 +64,10 @@ TEST(TrackPreprocessing, MergesCloseTracksWithTheUnionOfTheirViews) {
   EXPECT_NEAR(tracks[0].position[0], 0.0005, 1e-12);
   EXPECT_EQ(tracks[1].position[0], 1.0);
   EXPECT_EQ(merge_tracks(tracks, 0.01), 0u);
+  // A t1 far below the box's size (cells capped at 2^40 along it): only exact duplicates merge.
+  std::vector<Track> twins{track({5, 5, 5}, {0}), track({5, 5, 5}, {1}), track({6, 5, 5}, {0})};
+  EXPECT_EQ(merge_tracks(twins, 1e-30), 1u);
+  EXPECT_EQ(twins[0].views, (std::vector<std::uint32_t>{0, 1}));
 }
 
 // The grid search gives the rule of 6.3.1 exactly: each track, in input
