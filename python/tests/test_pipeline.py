@@ -135,5 +135,11 @@ def test_stereo_on_a_generated_scene(tmp_path, cli):
     _, _, thesis = sm.stereo(str(scene), no_fill=True, outlier_global=True)
     assert thesis["counts"]["fill_added"] == 0 and "soup fill" in thesis["stages"]
     assert thesis["counts"]["tracks_kept"] != report["counts"]["tracks_kept"]  # the thesis's global 3-sigma rule
+    # Fused depth-map points skip the cone-angle test unless asked.
+    fused_path = str(scene / "dense" / "fused.ply")
+    _, kept, fused = sm.stereo(str(scene), tracks=fused_path, no_fill=True)
+    _, kept_coned, coned = sm.stereo(str(scene), tracks=fused_path, no_fill=True, cone_angle_on_fused=True)
+    assert fused["counts"]["cone_filter_skipped_fused"] and not coned["counts"]["cone_filter_skipped_fused"]
+    assert len(kept) > len(kept_coned)
     with pytest.raises(sm.InvalidInput):
         sm.stereo(str(tmp_path / "nowhere"))
