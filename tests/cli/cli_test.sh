@@ -164,7 +164,8 @@ PY
     expect_error 1 "no/scene" "e.json" $bin eval-stereo "$data/meshes/cube.off" --scene no/scene --json e.json
     expect_error 2 "reference" "" $bin eval-stereo "$data/meshes/cube.off"
     expect_error 2 "exactly one MESH" "miss.ply" $bin eval-stereo "$data/meshes/cube.off" c.ply --scene no/scene --missing miss.ply
-    expect_error 2 "use .ply or .xyz" "miss.txt" $bin eval-stereo "$data/meshes/cube.off" --scene no/scene --missing miss.txt ;;
+    expect_error 2 "use .ply or .xyz" "miss.txt" $bin eval-stereo "$data/meshes/cube.off" --scene no/scene --missing miss.txt
+    expect_error 2 "requires --missing" "" $bin eval-stereo "$data/meshes/cube.off" --scene no/scene --missing-threshold 0.01 ;;
   stereo)  # issue 6: a generated scene end to end, with its intermediate outputs and report
     $bin make-scene sc --views 6 --width 320 --height 240 --samples 12000 --seed 3 -q || fail "make-scene failed"
     $bin stereo sc -o m.ply --soup soup.ply --tracks-out t.ply --report r.json -q || fail "stereo failed"
