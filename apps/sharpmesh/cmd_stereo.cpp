@@ -90,7 +90,10 @@ Command add_stereo(CLI::App& app) {
   sub->add_flag("!--no-fill", fill.enabled,
                 "Mesh the filtered soup alone (the thesis); default: where the soup is empty, fill it with the tracks' Poisson surface (beyond the thesis, 6.6)");
   sub->add_option("--fill-gap", fill.gap, "Fill only farther than this from every soup triangle, size bounds l")->capture_default_str();
-  sub->add_option("--fill-support", fill.support, "Fill only this close to a track, average track spacings")->capture_default_str();
+  sub->add_option("--fill-support", fill.support, "Fill only this close to a track of the filtered soup, average track spacings")->capture_default_str();
+  sub->add_option("--fill-bridge", fill.bridge,
+                  "Farther, fill where the soup's tracks within this many local track spacings surround the facet (gaps among sparse tracks); 0: off")
+      ->capture_default_str();
   sub->add_option("--fill-resolution", fill.resolution, "Protecting-ball spacing d' of the tracks' surface, size bounds l")->capture_default_str();
   sub->add_option("--fill-crossings", fill.max_crossings, "Remove fill facets crossed by more lines of sight")->capture_default_str();
   auto& m = o->stereo.meshing;
@@ -197,7 +200,7 @@ Command add_stereo(CLI::App& app) {
           {"photo_consistency", so.filters.photo_consistency},
           {"remove_occluded_tracks", so.filters.remove_occluded_tracks}, {"angle_deg", so.meshing.angle},
           {"size", so.meshing.size}, {"distance", so.meshing.distance}, {"seed", so.meshing.seed},
-          {"fill", so.fill.enabled}, {"fill_gap_l", so.fill.gap}, {"fill_support_spacings", so.fill.support},
+          {"fill", so.fill.enabled}, {"fill_gap_l", so.fill.gap}, {"fill_support_spacings", so.fill.support}, {"fill_bridge_local_spacings", so.fill.bridge},
           {"fill_max_crossings", so.fill.max_crossings}, {"max_hole", so.max_hole}}},
         {"derived", {{"half_diagonal", half_diagonal}, {"soup_half_diagonal", result.meshing.half_diagonal}}},
         {"counts",

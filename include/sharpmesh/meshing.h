@@ -122,6 +122,16 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
 /// no facet uses. Returns the number of facets removed.
 std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance);
 
+/// Gaps inside the data are kept, its outer edge is not extended: removes
+/// the facets with no corner and no centroid within `max_distance` of the
+/// points, unless the points within `bridge` local spacings of the centroid
+/// surround it (those within 30 degrees of the facet's plane leave no
+/// angular gap of half a turn around it). The local spacing there is the
+/// median, over the 8 points nearest to it, of their mean distance to their
+/// 6 nearest (robust to isolated outliers). bridge = 0: no bridging.
+/// Returns the number of facets removed.
+std::size_t trim_unless_bridging(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance, double bridge);
+
 /// Hole filling (the remedy of thesis 6.6): boundary cycles up to this
 /// perimeter are closed by a triangulated, refined and faired disc patch.
 struct HoleFillingOptions {

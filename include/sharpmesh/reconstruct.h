@@ -42,6 +42,10 @@ struct ReconstructOptions {
   /// Open surfaces: remove facets farther than trim_distance x d' + 2 avg
   /// from every input point (0: keep Poisson's closed surface everywhere).
   double trim_distance = 1.0;
+  /// Open surfaces: after the trim, cut the facets that overhang the data at
+  /// the mesh's boundary along the level set at about one spacing from it
+  /// (clip_boundary_to_points). Off where the caller trims by its own rule.
+  bool clip_boundary = true;
   /// Poisson is solved on a grid simplification with cells of
   /// poisson_spacing x d' (0: on every point). Beyond the thesis: the
   /// function only has to be accurate at the scale of the mesh.

@@ -256,10 +256,16 @@ struct SoupFillOptions {
   /// Fill only farther than this from every soup triangle, in units of the
   /// mesher's size bound l (0: everywhere the tracks' surface is visibility-consistent).
   double gap = 0.0;
-  /// Facets farther than this from every track are dropped, average track
-  /// spacings (farther, Poisson's sheets in open space, which no line of
-  /// sight can refute, cost accuracy: docs/stereo.md).
-  double support = 3.0;
+  /// Facets farther than this from every track of the filtered soup are
+  /// dropped (all three corners and the centroid), average track spacings
+  /// (farther, Poisson's sheets in open space, which no line of sight can
+  /// refute, cost accuracy: docs/stereo.md), unless `bridge` keeps them.
+  double support = 2.0;
+  /// Beyond `support`, a facet stays where the soup's tracks within this
+  /// many local track spacings surround it in its plane
+  /// (trim_unless_bridging): gaps among sparse tracks (far ground) are
+  /// filled, the tracks' outer edge is not extended. 0: no bridging.
+  double bridge = 3.0;
   /// A facet crossed by more lines of sight than this is removed (t3 of 6.3.2).
   int max_crossings = 1;
   /// Protecting-ball spacing d' of the tracks' surface (7.3.2), in units of
@@ -272,7 +278,7 @@ struct SoupFillStats {
   std::size_t tracks = 0;             ///< tracks the surface was fitted to (after merging those closer than d'/4)
   std::size_t surface_facets = 0;     ///< facets of the tracks' meshed surface
   std::size_t removed_near_soup = 0;  ///< where the soup already is
-  std::size_t removed_far = 0;        ///< farther than `support` from the tracks
+  std::size_t removed_far = 0;        ///< farther than `support` from the soup's tracks, and not bridging a gap among them
   std::size_t removed_visibility = 0;
   std::size_t added = 0;              ///< facets added to the soup
   std::string skipped;                ///< why no fill was attempted (empty: it ran)

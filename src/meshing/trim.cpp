@@ -1,7 +1,12 @@
 // Trimming where there is no data: Poisson's implicit function is closed by
 // construction, so on open scans and open models (CGAL's blade) it invents a
-// closing sheet. Facets far from every input point are removed.
+// closing sheet. Facets far from every input point are removed, or, to fill
+// gaps in the data without extending its outer edge, those the data neither
+// comes near nor surrounds.
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "eval/mesh_graph.h"
 #include "pointset/knn.h"
@@ -10,18 +15,15 @@
 
 namespace sharpmesh {
 
-std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance) {
-  if (!(max_distance > 0)) throw InvalidArgument("trim distance must be positive");
-  if (points.empty() || mesh.faces.empty()) return 0;
-  const detail::KnnIndex index(points);
+namespace {
+
+/// Removes the facets `keep(a, b, c)` rejects, then unused vertices.
+template <class Keep>
+std::size_t remove_facets_unless(SurfaceMesh& mesh, const Keep& keep_facet) {
   std::vector<char> keep(mesh.faces.size(), 1);
   tbb::parallel_for(std::size_t(0), mesh.faces.size(), [&](std::size_t f) {
     const Triangle& t = mesh.faces[f];
-    const Vec3 c = (1.0 / 3.0) * (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]);
-    std::vector<std::uint32_t> ids;
-    std::vector<double> d2;
-    index.nearest(c, 1, ids, d2);
-    keep[f] = !d2.empty() && d2[0] <= max_distance * max_distance;
+    keep[f] = keep_facet(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
   });
   std::vector<Triangle> faces;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
@@ -29,6 +31,77 @@ std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& poi
   const std::size_t removed = mesh.faces.size() - faces.size();
   if (removed > 0) detail::set_faces_and_compact(mesh, std::move(faces));
   return removed;
+}
+
+/// Whether the directions from c to `around` leave no angular gap of half a
+/// turn or more in the plane orthogonal to n (c lies inside their spread).
+bool surrounded(const Vec3& c, const Vec3& n, const std::vector<Vec3>& around) {
+  const double length = norm(n);
+  if (!(length > 0) || around.size() < 3) return false;
+  const Vec3 normal = (1.0 / length) * n;
+  // An orthonormal frame (u, v) of the plane.
+  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 u = (1.0 / norm(cross(normal, axis))) * cross(normal, axis);
+  const Vec3 v = cross(normal, u);
+  std::vector<double> angles;
+  for (const Vec3& p : around) {
+    const Vec3 d = p - c;
+    // Only points near the facet's plane continue its surface (less than
+    // 30 degrees off it): a wall or roof next to a sheet of Poisson's in
+    // open space does not surround it.
+    if (std::abs(dot(d, normal)) > 0.5 * norm(d)) continue;
+    const double x = dot(d, u), y = dot(d, v);
+    if (x != 0 || y != 0) angles.push_back(std::atan2(y, x));
+  }
+  if (angles.size() < 3) return false;
+  std::sort(angles.begin(), angles.end());
+  double widest = angles.front() + 2 * M_PI - angles.back();
+  for (std::size_t i = 1; i < angles.size(); ++i) widest = std::max(widest, angles[i] - angles[i - 1]);
+  return widest < M_PI;
+}
+
+}  // namespace
+
+std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance) {
+  if (!(max_distance > 0)) throw InvalidArgument("trim distance must be positive");
+  if (points.empty() || mesh.faces.empty()) return 0;
+  const detail::KnnIndex index(points);
+  return remove_facets_unless(mesh, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    index.nearest((1.0 / 3.0) * (a + b + c), 1, ids, d2);
+    return !d2.empty() && d2[0] <= max_distance * max_distance;
+  });
+}
+
+std::size_t trim_unless_bridging(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance, double bridge) {
+  if (!(max_distance > 0 && bridge >= 0 && std::isfinite(max_distance) && std::isfinite(bridge)))
+    throw InvalidArgument("trim: the distance must be positive and the bridging reach at least 0");
+  if (points.empty() || mesh.faces.empty()) return 0;
+  const detail::KnnIndex index(points);
+  const bool bridging = bridge > 0 && points.size() >= 8;
+  const std::vector<double> spacing = bridging ? detail::local_spacings(points, index, 6) : std::vector<double>{};
+  return remove_facets_unless(mesh, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 centroid = (1.0 / 3.0) * (a + b + c);
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    for (const Vec3* p : {&a, &b, &c, &centroid}) {
+      index.nearest(*p, 1, ids, d2);
+      if (d2[0] <= max_distance * max_distance) return true;
+    }
+    if (!bridging) return false;
+    // The local spacing: a median, so that one isolated point's wide
+    // spacing does not widen the reach.
+    index.nearest(centroid, 8, ids, d2);
+    std::vector<double> local;
+    for (std::uint32_t i : ids) local.push_back(spacing[i]);
+    std::nth_element(local.begin(), local.begin() + static_cast<std::ptrdiff_t>(local.size() / 2), local.end());
+    std::vector<std::uint32_t> inside;
+    index.within(centroid, bridge * local[local.size() / 2], inside);
+    std::vector<Vec3> around;
+    for (std::uint32_t i : inside) around.push_back(points[i]);
+    return surrounded(centroid, cross(b - a, c - a), around);
+  });
 }
 
 std::size_t count_boundary_edges(const SurfaceMesh& mesh) {

@@ -443,7 +443,8 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     result.trimmed_facets =
         trim_far_from_points(result.mesh, input.points, trim_distance);
     if (result.mesh.faces.empty()) throw NumericalFailure("reconstruction: no facet of the mesh lies near the input points");
-    result.clipped_facets = clip_boundary_to_points(result.mesh, input.points, result.average_spacing);
+    if (options.clip_boundary)
+      result.clipped_facets = clip_boundary_to_points(result.mesh, input.points, result.average_spacing);
     result.boundary_edges = count_boundary_edges(result.mesh);
   }
   return result;

@@ -37,7 +37,7 @@ double average_spacing(const PointSet& points, int k, const Progress& progress) 
 
 namespace detail {
 
-double average_spacing(const std::vector<Vec3>& points, const KnnIndex& index, int k) {
+std::vector<double> local_spacings(const std::vector<Vec3>& points, const KnnIndex& index, int k) {
   std::vector<double> mean(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint32_t> ids;
@@ -54,8 +54,12 @@ double average_spacing(const std::vector<Vec3>& points, const KnnIndex& index, i
       mean[i] = count > 0 ? sum / count : 0.0;
     }
   });
+  return mean;
+}
+
+double average_spacing(const std::vector<Vec3>& points, const KnnIndex& index, int k) {
   double total = 0;  // summed in order: independent of the thread count
-  for (double m : mean) total += m;
+  for (double m : local_spacings(points, index, k)) total += m;
   return total / static_cast<double>(points.size());
 }
 

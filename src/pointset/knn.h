@@ -33,4 +33,8 @@ class KnnIndex {
 /// order, so the result does not depend on the thread count.
 double average_spacing(const std::vector<Vec3>& points, const KnnIndex& index, int k);
 
+/// Each point's mean distance to its k nearest other points (the terms of
+/// average_spacing): the local sampling density.
+std::vector<double> local_spacings(const std::vector<Vec3>& points, const KnnIndex& index, int k);
+
 }  // namespace sharpmesh::detail

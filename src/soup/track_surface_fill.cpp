@@ -1,15 +1,17 @@
 // Beyond the thesis (its limitation in 6.6): the filtered soup leaves holes
 // where tracks exist but their triangles were removed (far ground seen at
-// grazing angles, parts seen by two or three views). The soup is completed
-// with a Poisson surface of the tracks: normals by jet fitting, oriented
-// towards the cameras that saw each track, meshed by the Chapter 7 pipeline
-// without features, cut to the tracks' neighbourhood (and, with a positive
-// gap, to where the soup is empty), and cleared of every facet a line of
-// sight crosses.
+// grazing angles, parts seen by two or three views), and where tracks are
+// sparse. The soup is completed with a Poisson surface of the tracks:
+// normals by jet fitting, oriented towards the cameras that saw each track,
+// meshed by the Chapter 7 pipeline without features, cut to the
+// neighbourhood of the soup's tracks or to the gaps they surround (and,
+// with a positive gap, to where the soup is empty), and cleared of every
+// facet a line of sight crosses.
 #include <algorithm>
 #include <cmath>
 
 #include "eval/triangle_distance.h"
+#include "pointset/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
 #include "sharpmesh/reconstruct.h"
@@ -21,6 +23,8 @@ void SoupFillOptions::check() const {
   if (!(gap >= 0 && gap <= 100)) throw InvalidArgument("the fill gap must be in [0, 100] size bounds l, got " + format_number(gap));
   if (!(support > 0 && support <= 100))
     throw InvalidArgument("the fill support must be in (0, 100] average track spacings, got " + format_number(support));
+  if (!(bridge >= 0 && bridge <= 100))
+    throw InvalidArgument("the fill's bridging reach must be in [0, 100] local track spacings, got " + format_number(bridge));
   if (max_crossings < 0) throw InvalidArgument("the fill's line-of-sight threshold must be >= 0");
   if (!(resolution > 0 && resolution <= 100)) throw InvalidArgument("the fill resolution must be in (0, 100] size bounds l, got " + format_number(resolution));
 }
@@ -67,6 +71,26 @@ SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model
   PointSet all;
   for (const Track& t : model.tracks) all.points.push_back(t.position);
   const double spacing = average_spacing(all);
+  // The tracks the filtered soup still uses: outliers and tracks whose
+  // triangles all failed a filter do not count as support.
+  std::vector<Vec3> in_soup;
+  {
+    std::vector<char> used(soup.vertices.size(), 0);
+    for (const Triangle& f : soup.faces)
+      for (std::uint32_t v : f) used[v] = 1;
+    for (std::size_t v = 0; v < used.size(); ++v)
+      if (used[v]) in_soup.push_back(soup.vertices[v]);
+  }
+  if (in_soup.size() < 8) {
+    stats.skipped = "fewer than 8 tracks in the soup";
+    return stats;
+  }
+  // How far from the soup's tracks a kept facet can lie: support, or the
+  // bridging reach where they are sparsest (99th percentile).
+  std::vector<double> local = detail::local_spacings(in_soup, detail::KnnIndex(in_soup), 6);
+  const auto q99 = local.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(local.size() - 1));
+  std::nth_element(local.begin(), q99, local.end());
+  const double reach = std::max(options.support * spacing, options.bridge * *q99);
   std::vector<bool> keep(model.tracks.size(), true);
   for (std::size_t t = 0; t < occluded_tracks.size() && t < keep.size(); ++t) keep[t] = !occluded_tracks[t];
   // The tracks' surface at d' = resolution x l; it only serves as the
@@ -82,7 +106,11 @@ SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model
   surface.feature_mode = FeatureMode::None;
   surface.check_input_normals = false;  // oriented by the cameras, which MST cannot improve
   surface.delta = std::clamp(d_prime / average_spacing(tracks), 1.0, 16.0);
-  surface.trim_distance = std::max(0.1, options.support * spacing / d_prime);  // cut again below, from every track
+  // A first, loose cut that keeps Poisson from meshing open space; the
+  // finer one follows below. No boundary clip at one spacing: it would open
+  // again the gaps among sparse tracks that the fill is meant to close.
+  surface.trim_distance = std::max(0.1, reach / d_prime);
+  surface.clip_boundary = false;
   SurfaceMesh fill;
   try {
     fill = reconstruct(tracks, surface, progress).mesh;
@@ -95,7 +123,7 @@ SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model
   stats.surface_facets = fill.faces.size();
   if (fill.faces.empty()) return stats;
 
-  // Keep the facets away from the soup and near the tracks.
+  // Keep the facets away from the soup (gap > 0) and near its tracks or in the gaps they surround.
   if (options.gap > 0) {
     const detail::TriangleDistance to_soup(soup);
     std::vector<Vec3> centroids;
@@ -112,7 +140,7 @@ SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model
     }
     fill.faces = candidates;
   }
-  stats.removed_far = trim_far_from_points(fill, all.points, options.support * spacing);
+  stats.removed_far = trim_unless_bridging(fill, in_soup, options.support * spacing, options.bridge);
 
   // Visibility (6.3.2): no line of sight may cross an invented facet.
   TriangleSoup sight;

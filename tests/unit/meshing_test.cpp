@@ -150,6 +150,73 @@ TEST(BoundaryClip, CutsTheOverhangAlongTheData) {
   EXPECT_EQ(tetra.faces.size(), 4u);
 }
 
+/// A square grid of n x n cells of size h in z = 0 from `origin` (two facets a cell).
+SurfaceMesh flat_grid(int n, double h, const Vec3& origin) {
+  SurfaceMesh grid;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) grid.vertices.push_back(origin + Vec3{i * h, j * h, 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto a = static_cast<std::uint32_t>(j * (n + 1) + i);
+      grid.faces.push_back({a, a + 1, static_cast<std::uint32_t>(a + n + 2)});
+      grid.faces.push_back({a, static_cast<std::uint32_t>(a + n + 2), static_cast<std::uint32_t>(a + n + 1)});
+    }
+  return grid;
+}
+
+// Points every 0.1 on the square [-2, 2]^2 of z = 0 but for a disc of
+// radius 0.28 at the origin, and an isolated point above it; a mesh of the
+// plane over [-3, 3]^2, a vertical sheet standing on it and a small sheet
+// hovering above it. Within 0.1 of a
+// point everything stays; beyond, the disc is bridged (from anywhere in it,
+// points lie all around within 3 spacings, about 0.34), the plane beyond
+// the square's edge and the sheets are removed.
+TEST(Trim, BridgesAGapInsideTheDataButDoesNotExtendItsEdge) {
+  std::vector<Vec3> points;
+  for (int j = -20; j <= 20; ++j)
+    for (int i = -20; i <= 20; ++i)
+      if (i * i + j * j > 2.5 * 2.5) points.push_back({0.1 * i, 0.1 * j, 0});
+  points.push_back({0.6, 0.6, 1.0});  // an outlier: its own spacing is wide, its neighbours' are not
+  SurfaceMesh mesh = flat_grid(120, 0.05, {-3, -3, 0});
+  const auto plane_faces = mesh.faces.size();
+  SurfaceMesh sheet = flat_grid(10, 0.1, {0, 0, 0});  // turned to x = 0.55, 0 <= y, z <= 1
+  for (Vec3& v : sheet.vertices) v = Vec3{0.55, v[0], v[1]};
+  SurfaceMesh hovering = flat_grid(10, 0.05, {1, 1, 0.2});  // parallel to the data, 2 spacings above it
+  for (const SurfaceMesh* extra : {&sheet, &hovering}) {
+    const auto offset = static_cast<std::uint32_t>(mesh.vertices.size());
+    mesh.vertices.insert(mesh.vertices.end(), extra->vertices.begin(), extra->vertices.end());
+    for (const Triangle& f : extra->faces) mesh.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  }
+
+  auto centroid = [](const SurfaceMesh& m, const Triangle& f) {
+    return (1.0 / 3) * (m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]);
+  };
+  auto count = [&](const SurfaceMesh& m, auto&& where) {
+    return std::count_if(m.faces.begin(), m.faces.end(), [&](const Triangle& f) { return where(centroid(m, f)); });
+  };
+  auto in_disc = [](const Vec3& c) { return std::abs(c[2]) < 1e-9 && c[0] * c[0] + c[1] * c[1] < 0.1 * 0.1; };
+  auto beyond_edge = [](const Vec3& c) { return std::max(std::abs(c[0]), std::abs(c[1])) > 2.25; };
+  auto on_sheet = [](const Vec3& c) { return c[2] > 0.1 && c[0] < 0.9; };
+  auto on_hovering = [](const Vec3& c) { return std::abs(c[2] - 0.2) < 1e-9; };
+  ASSERT_GT(count(mesh, in_disc), 4);
+  ASSERT_GT(count(mesh, on_sheet), 100);
+
+  SurfaceMesh bridged = mesh;
+  EXPECT_GT(trim_unless_bridging(bridged, points, 0.1, 3.0), 0u);
+  EXPECT_EQ(count(bridged, in_disc), count(mesh, in_disc)) << "the gap among the points is bridged";
+  EXPECT_EQ(count(bridged, beyond_edge), 0) << "the points' outer edge is not extended";
+  EXPECT_LE(count(bridged, on_sheet), 4) << "a sheet next to an outlier is not surrounded in its plane";
+  EXPECT_EQ(count(bridged, on_hovering), 0) << "the points below a hovering sheet are not in its plane";
+  EXPECT_GT(bridged.faces.size(), plane_faces / 3);
+
+  SurfaceMesh near_only = mesh;
+  trim_unless_bridging(near_only, points, 0.1, 0.0);
+  EXPECT_EQ(count(near_only, in_disc), 0) << "without bridging, the gap stays open";
+  EXPECT_EQ(count(near_only, beyond_edge), 0);
+  EXPECT_THROW(trim_unless_bridging(near_only, points, 0.0, 3.0), InvalidArgument);
+  EXPECT_THROW(trim_unless_bridging(near_only, points, 0.1, -1.0), InvalidArgument);
+}
+
 // Two parallel polylines a separation apart: the shorter is dropped below
 // it, both kept above; an L meeting at a shared corner is kept; a trace
 // that doubles back on itself is dropped.

@@ -370,8 +370,9 @@ TEST(SoupMeshing, EveryPatchOfTheSoupIsMeshedNotOnlyWhereRandomSeedsFall) {
 
 TEST(SoupFill, AHoleOfTheSoupIsFilledFromTheTracksSurface) {
   // Tracks on a gently curved sheet z = 10 + 0.3 sin(x) cos(y), seen by
-  // three cameras at z = 0; the soup over them has a hole of radius 1 at
-  // the centre. The fill puts the tracks' surface there.
+  // three cameras at z = 0; the soup over them has a hole of radius 0.45 at
+  // the centre. The fill puts the tracks' surface there (within 3 spacings
+  // of the soup's tracks, and where they surround it).
   StereoModel model;
   model.cameras = {camera_at({0, 0, 0}), camera_at({0.5, 0, 0}), camera_at({0, 0.5, 0})};
   const int n = 61;
@@ -387,7 +388,7 @@ TEST(SoupFill, AHoleOfTheSoupIsFilledFromTheTracksSurface) {
     for (int i = 0; i + 1 < n; ++i) {
       const auto v = static_cast<std::uint32_t>(j * n + i);
       const double x = -3 + 0.1 * (i + 0.5), y = -3 + 0.1 * (j + 0.5);
-      if (x * x + y * y < 1) continue;
+      if (x * x + y * y < 0.45 * 0.45) continue;
       soup.faces.push_back({v, v + 1, static_cast<std::uint32_t>(v + n + 1)});
       soup.faces.push_back({v, static_cast<std::uint32_t>(v + n + 1), static_cast<std::uint32_t>(v + n)});
     }
@@ -411,9 +412,58 @@ TEST(SoupFill, AHoleOfTheSoupIsFilledFromTheTracksSurface) {
   const SoupFillStats gapped = fill_soup_from_tracks(away, model, options, 0.1, 1.0);
   EXPECT_GT(gapped.removed_near_soup, 0u);
   EXPECT_LT(gapped.added, stats.added);
-  EXPECT_FALSE(soup_segment_intersection(away, {0.95, 0, 5}, {0.95, 0, 15}, hit)) << "0.05 inside the hole's rim";
+  EXPECT_FALSE(soup_segment_intersection(away, {0.4, 0, 5}, {0.4, 0, 15}, hit)) << "0.05 inside the hole's rim";
   options.support = -1;
   EXPECT_THROW(fill_soup_from_tracks(away, model, options, 0.1, 1.0), InvalidArgument);
+}
+
+TEST(SoupFill, AGapAmongTheTracksIsBridgedButTheirEdgeIsNotExtended) {
+  // The sheet of the test above, with tracks every 0.1 but none within 0.28
+  // of the centre (far ground has such gaps between sparse tracks), and the
+  // soup over the tracks. With a support of one spacing, the tracks'
+  // surface (facets about 0.2 long) closes the gap only by bridging; it does
+  // not reach past the tracks' outer edge (|x|, |y| = 3).
+  StereoModel model;
+  model.cameras = {camera_at({0, 0, 0}), camera_at({0.5, 0, 0}), camera_at({0, 0.5, 0})};
+  const int n = 61;
+  auto height = [](double x, double y) { return 10 + 0.3 * std::sin(x) * std::cos(y); };
+  std::vector<std::uint32_t> index(n * n, UINT32_MAX);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = -3 + 0.1 * i, y = -3 + 0.1 * j;
+      if (x * x + y * y < 0.28 * 0.28) continue;
+      index[static_cast<std::size_t>(j * n + i)] = static_cast<std::uint32_t>(model.tracks.size());
+      model.tracks.push_back(track({x, y, height(x, y)}, {0, 1, 2}));
+    }
+  TriangleSoup soup;
+  for (const Track& t : model.tracks) soup.vertices.push_back(t.position);
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const std::array<std::uint32_t, 4> v{index[static_cast<std::size_t>(j * n + i)], index[static_cast<std::size_t>(j * n + i + 1)],
+                                           index[static_cast<std::size_t>((j + 1) * n + i + 1)], index[static_cast<std::size_t>((j + 1) * n + i)]};
+      if (std::count(v.begin(), v.end(), UINT32_MAX) > 0) continue;
+      soup.faces.push_back({v[0], v[1], v[2]});
+      soup.faces.push_back({v[0], v[2], v[3]});
+    }
+  Vec3 hit;
+  ASSERT_FALSE(soup_segment_intersection(soup, {0.02, 0.01, 5}, {0.02, 0.01, 15}, hit));
+  SoupFillOptions options;
+  options.support = 1;
+  TriangleSoup filled = soup;
+  const SoupFillStats stats = fill_soup_from_tracks(filled, model, options, 0.05, 1.0);
+  EXPECT_TRUE(stats.skipped.empty()) << stats.skipped;
+  ASSERT_TRUE(soup_segment_intersection(filled, {0.02, 0.01, 5}, {0.02, 0.01, 15}, hit)) << "the gap is bridged";
+  EXPECT_NEAR(hit[2], height(0.02, 0.01), 0.05);
+  double farthest = 0;
+  for (std::size_t f = soup.faces.size(); f < filled.faces.size(); ++f)
+    for (std::uint32_t v : filled.faces[f]) farthest = std::max({farthest, std::abs(filled.vertices[v][0]), std::abs(filled.vertices[v][1])});
+  EXPECT_LT(farthest, 3.35) << "the fill stops within a facet of the tracks' edge";
+  options.bridge = 0;
+  TriangleSoup unbridged = soup;
+  fill_soup_from_tracks(unbridged, model, options, 0.05, 1.0);
+  EXPECT_FALSE(soup_segment_intersection(unbridged, {0.02, 0.01, 5}, {0.02, 0.01, 15}, hit)) << "without bridging, the gap stays";
+  options.bridge = -1;
+  EXPECT_THROW(fill_soup_from_tracks(unbridged, model, options, 0.05, 1.0), InvalidArgument);
 }
 
 TEST(SoupFill, FacetsThatLinesOfSightCrossAreNotAdded) {
@@ -424,17 +474,28 @@ TEST(SoupFill, FacetsThatLinesOfSightCrossAreNotAdded) {
   StereoModel model;
   model.cameras = {camera_at({0, 0, 0}), camera_at({0.5, 0, 0}), camera_at({0, 0.5, 0})};
   const int n = 61;
+  std::vector<std::uint32_t> far_id(n * n), near_id(n * n, UINT32_MAX);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const double x = -3 + 0.1 * i, y = -3 + 0.1 * j, wobble = 0.01 * ((i * 7 + j * 3) % 5);
+      far_id[static_cast<std::size_t>(j * n + i)] = static_cast<std::uint32_t>(model.tracks.size());
       model.tracks.push_back(track({x, y, 14 + wobble}, {0, 1, 2}));
-      if (x < 0) model.tracks.push_back(track({x, y, 10 + wobble}, {0, 1, 2}));
+      if (x >= 0) continue;
+      near_id[static_cast<std::size_t>(j * n + i)] = static_cast<std::uint32_t>(model.tracks.size());
+      model.tracks.push_back(track({x, y, 10 + wobble}, {0, 1, 2}));
     }
-  TriangleSoup soup;
+  TriangleSoup soup;  // a soup over both sheets: their tracks support the fill
   for (const Track& t : model.tracks) soup.vertices.push_back(t.position);
-  const auto token = static_cast<std::uint32_t>(soup.vertices.size());  // a token soup triangle, out of sight
-  soup.vertices.insert(soup.vertices.end(), {{50, 50, 50}, {51, 50, 50}, {50, 51, 50}});
-  soup.faces = {{token, token + 1, token + 2}};
+  for (const auto* id : {&far_id, &near_id})
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i) {
+        auto at = [&](int di, int dj) { return (*id)[static_cast<std::size_t>((j + dj) * n + i + di)]; };
+        if (at(0, 0) == UINT32_MAX || at(1, 1) == UINT32_MAX || at(1, 0) == UINT32_MAX || at(0, 1) == UINT32_MAX) continue;
+        soup.faces.push_back({at(0, 0), at(1, 0), at(1, 1)});
+        soup.faces.push_back({at(0, 0), at(1, 1), at(0, 1)});
+      }
+  const std::size_t soup_faces = soup.faces.size();
+  ASSERT_GT(soup_faces, 100u);
   const SoupFillStats stats = fill_soup_from_tracks(soup, model, {}, 0.1, 1.0);
   EXPECT_TRUE(stats.skipped.empty()) << stats.skipped;
   EXPECT_GT(stats.removed_visibility, 0u);
@@ -442,7 +503,7 @@ TEST(SoupFill, FacetsThatLinesOfSightCrossAreNotAdded) {
   // Lines of sight to the far sheet cross the near one where x > -2.1 and
   // |y| < 2.1 (the far sheet seen through it, scaled by 10/14).
   std::size_t near = 0, far = 0;
-  for (std::size_t f = 1; f < soup.faces.size(); ++f) {
+  for (std::size_t f = soup_faces; f < soup.faces.size(); ++f) {
     const Vec3& v = soup.vertices[soup.faces[f][0]];
     near += v[2] < 10.5 && v[0] > -1.9 && v[0] < -0.4 && std::abs(v[1]) < 1.9;  // away from its rim, where Poisson bends to the far sheet
     far += v[2] > 12;
@@ -507,8 +568,11 @@ TEST(StereoReconstruction, AGeneratedSceneIsReconstructedAccuratelyAndCompletely
   // which the thesis's global rule removes: completeness at 1% 0.85 -> 0.89,
   // but one soup triangle from the roof to the far ground, hidden behind the
   // building, passes every filter of 6.3.2 (accuracy at 1% 0.994 -> 0.969).
-  EXPECT_GT(e.accuracy[one_percent], 0.96);
-  EXPECT_GT(e.completeness[one_percent], 0.87);
+  // The fill bridging the gaps among sparse tracks: completeness at 1%
+  // 0.89 -> 0.94, accuracy 0.970 -> 0.953 (the fill spreads next to that
+  // triangle and a facet past the tracks' outer edge).
+  EXPECT_GT(e.accuracy[one_percent], 0.945);
+  EXPECT_GT(e.completeness[one_percent], 0.92);
 }
 
 TEST(StereoReconstruction, ImagesOfTheWrongSizeAreRefusedByName) {
