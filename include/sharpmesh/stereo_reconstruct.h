@@ -278,7 +278,7 @@ struct SoupFillOptions {
 };
 
 struct SoupFillStats {
-  std::size_t tracks = 0;             ///< tracks the surface was fitted to (after merging those closer than d'/4)
+  std::size_t tracks = 0;             ///< tracks the surface was fitted to (after merging those closer than l/2)
   std::size_t surface_facets = 0;     ///< facets of the tracks' meshed surface
   std::size_t removed_near_soup = 0;  ///< where the soup already is
   std::size_t removed_far = 0;        ///< farther than `support` from the soup's tracks, and not bridging a gap among them
