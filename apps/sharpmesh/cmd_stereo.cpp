@@ -157,7 +157,7 @@ Command add_stereo(CLI::App& app) {
       if (o->stereo.fill.enabled) {
         const SoupFillStats& fl = result.fill;
         if (fl.skipped.empty())
-          std::snprintf(line, sizeof line, "  fill: tracks' surface of %zu facets from %zu tracks, -%zu near the soup, -%zu far from tracks, -%zu visibility -> %zu added",
+          std::snprintf(line, sizeof line, "  fill: tracks' surface of %zu facets from %zu tracks, -%zu near the soup, -%zu beyond the soup's tracks, -%zu visibility -> %zu added",
                         fl.surface_facets, fl.tracks, fl.removed_near_soup, fl.removed_far, fl.removed_visibility, fl.added);
         else
           std::snprintf(line, sizeof line, "  fill: none (%s)", fl.skipped.c_str());
