@@ -38,12 +38,12 @@ Command add_eval_stereo(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--json", o->json, "Write the curves as JSON");
   sub->add_option("--plot", o->plot, "Write a PNG plot of the curves");
-  auto* missing = sub->add_option("--missing", o->missing,
+  auto* missing_option = sub->add_option("--missing", o->missing,
                   "Write the visible reference samples the mesh misses (farther than --missing-threshold) as a point cloud; one MESH only");
   sub->add_option("--missing-threshold", o->missing_threshold, "Distance beyond which a sample is missing, fraction of the scene size")
       ->check(CLI::PositiveNumber)
       ->capture_default_str()
-      ->needs(missing);
+      ->needs(missing_option);
   common->add_to(*sub);
   auto run = [o, common] {
     if (o->scene.empty() && o->reference.empty()) throw InvalidArgument("give --scene DIR, or --reference MESH with --cameras MODEL");
