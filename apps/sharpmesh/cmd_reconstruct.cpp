@@ -24,7 +24,8 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
           {"uncovered_gaps", gaps.size()},
           {"uncovered", gaps},
           {"feature_edge_polylines", m.feature_edges.size()},
-          {"mesher_retries", m.mesher_retries}};
+          {"mesher_retries", m.mesher_retries},
+          {"runaway_stopped_at_vertices", m.runaway_stopped_at}};
 }
 
 }  // namespace

@@ -102,6 +102,7 @@ struct ImplicitMeshingResult {
   bool refinement_stalled = false;    ///< stopped after many steps without a new vertex
   bool refinement_runaway = false;    ///< stopped: still adding vertices long after passing the expected count
   std::size_t mesher_retries = 0;     ///< refinements run again after a CGAL failure next to a feature
+  std::size_t runaway_stopped_at = 0; ///< vertices of the last refinement stopped as running away (0: none was)
 };
 
 /// Meshes the zero level set of `surface` inside its bounding sphere by

@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <unordered_set>
 
 #include "eval/mesh_graph.h"
@@ -97,6 +98,34 @@ std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Pol
   return out;
 }
 
+/// The grid cell (of size `edge_length`) holding the most vertices stamped
+/// after `since` (CGAL's insertion time stamps), as their count and
+/// centroid; `since` becomes the newest stamp. Healthy refinement spreads
+/// new vertices over the surface, a few per cell; a runaway manifold repair
+/// piles them onto one spot.
+struct NewVertexCluster {
+  std::size_t count = 0;
+  Vec3 centre{0, 0, 0};
+};
+NewVertexCluster densest_new_vertices(const C3t3& c3t3, double edge_length, std::size_t& since) {
+  std::map<std::array<long, 3>, NewVertexCluster> cells;
+  const Tr& tr = c3t3.triangulation();
+  NewVertexCluster best;
+  std::size_t newest = since;
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
+    if (v->time_stamp() <= since) continue;
+    newest = std::max(newest, v->time_stamp());
+    const Vec3 p = detail::from_cgal(tr.point(v).point());
+    NewVertexCluster& cell = cells[{static_cast<long>(std::floor(p[0] / edge_length)), static_cast<long>(std::floor(p[1] / edge_length)),
+                                    static_cast<long>(std::floor(p[2] / edge_length))}];
+    cell.centre = cell.centre + p;
+    if (++cell.count > best.count) best = cell;
+  }
+  if (best.count > 0) best.centre = (1.0 / static_cast<double>(best.count)) * best.centre;
+  since = newest;
+  return best;
+}
+
 // Mesher_3::refine_mesh() step by step (as CGAL's own loop does), so that the
 // progress callback can cancel, and so that a refinement that keeps working
 // without adding vertices is stopped and its current mesh kept. This happens
@@ -104,15 +133,21 @@ std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Pol
 // balls cannot be repaired: CGAL then rescans it forever (couplingdown 50k).
 // Stalled: no new vertex for 20000 steps, or for max(20 s, the refinement
 // time until the last new vertex).
-// Runaway: past the vertex count the data suggests, CGAL's manifold repair
-// can keep inserting points around a vertex next to protecting balls that it
-// cannot make manifold, ever more slowly (couplingdown 50k: 23k vertices in
-// 65 s for an expected 6k reached in 2 s). Refinement ends at
-// `runaway_vertices` (`runaway`): a count, not a time, so that the result
-// does not depend on the machine.
+// Runaway: CGAL's manifold repair can keep inserting points around a vertex
+// next to protecting balls that it cannot make manifold, ever more slowly.
+// Every kRunawayWindow new vertices, when more than an eighth of them lie in
+// one cell of the edge length, the refinement ends as `runaway`. Healthy
+// runs of seven CGAL models at 50k points, delta 1.5 and 3.5, put at most 40
+// in one cell; couplingdown seed 3 at delta 1.5 put 231 there at 20k
+// vertices, 3 s in (before, only the vertex bound below caught it, at 40k
+// vertices after 105 s; the whole run now takes 14 s instead of 112). Past
+// `runaway_vertices` it ends as well. Both are counts, not times, so the
+// result does not depend on the machine.
+constexpr std::size_t kRunawayWindow = 1024;
+
 template <class Mesher>
-void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices, std::size_t runaway_vertices,
-                     const Progress& progress, ImplicitMeshingResult& result) {
+void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::size_t max_vertices, std::size_t runaway_vertices,
+                     const Progress& progress, ImplicitMeshingResult& result, std::optional<Vec3>& runaway_spot) {
   using Clock = std::chrono::steady_clock;
   const bool debug = std::getenv("SHARPMESH_DEBUG_REFINE") != nullptr;
   const auto start = Clock::now();
@@ -121,6 +156,8 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices,
   std::size_t steps = 0, last_growth_step = 0, vertices = c3t3.triangulation().number_of_vertices();
   Clock::time_point last_growth = start, last_report = start;
   bool grew = false;
+  std::size_t next_density_check = vertices + kRunawayWindow, stamp = 0;
+  densest_new_vertices(c3t3, edge_length, stamp);  // the initial vertices are not new
   while (!mesher.is_algorithm_done()) {
     mesher.one_step();
     ++steps;
@@ -133,8 +170,20 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, std::size_t max_vertices,
     if (max_vertices > 0 && now >= max_vertices) break;
     if (runaway_vertices > 0 && now >= runaway_vertices) {
       result.refinement_runaway = true;
+      result.runaway_stopped_at = now;
       break;
     }
+    if (now >= next_density_check) {
+      const NewVertexCluster densest = densest_new_vertices(c3t3, edge_length, stamp);
+      if (debug) std::fprintf(stderr, "refine: %zu vertices, densest cell of the new ones %zu\n", now, densest.count);
+      if (densest.count > kRunawayWindow / 8) {
+        result.refinement_runaway = true;
+        result.runaway_stopped_at = now;
+        runaway_spot = densest.centre;
+        break;
+      }
+    }
+    if (now >= next_density_check) next_density_check = now + kRunawayWindow;
     if (steps % 64 != 0) continue;
     const Clock::time_point t = Clock::now();
     if (grew) last_growth = t, grew = false;
@@ -405,8 +454,10 @@ double estimate_facet_count(double area, const RefinementCriteria& criteria) {
 
 namespace {
 
+/// One refinement; `runaway_spot` is where a run-away refinement piled its
+/// vertices, when the check on them stopped it.
 ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
-                                              const Progress& progress) {
+                                              const Progress& progress, std::optional<Vec3>& runaway_spot) {
   const double radius = surface.bounding_radius();
   if (!(radius > 0)) throw InvalidInput("implicit surface has an empty bounding sphere");
   const double domain_radius = meshing_domain_radius(surface);
@@ -495,7 +546,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
   // vertices after 4 s instead of passing 14k after 15 s.
   const std::size_t runaway_vertices =
       options.expected_facets > 0 ? static_cast<std::size_t>(0.75 * options.expected_facets) + 2 * result.protecting_balls + 2000 : 0;
-  refine_stepwise(mesher, c3t3, max_vertices, runaway_vertices, progress, result);
+  refine_stepwise(mesher, c3t3, options.criteria.edge_length, max_vertices, runaway_vertices, progress, result, runaway_spot);
   if (max_vertices > 0 && c3t3.triangulation().number_of_vertices() >= max_vertices) error = CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED;
   c3t3.clear_manifold_info();
   report_progress(progress, "refinement", 1.0);
@@ -599,6 +650,7 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   constexpr int kMaxRetries = 4;
   ImplicitMeshingOptions attempt = options;
   std::vector<UncoveredGap> dropped;
+  std::size_t runaway_stopped_at = 0;
   drop_close_polylines(attempt.features.polylines, options.features.min_separation, dropped);
   const double reach = 2 * (options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius);
   auto drop_all = [&] {
@@ -609,14 +661,18 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
     std::string what;
     const bool last = retries == kMaxRetries || attempt.features.polylines.empty();
     try {
-      ImplicitMeshingResult result = refine_implicit_surface(surface, attempt, progress);
+      std::optional<Vec3> pile;
+      ImplicitMeshingResult result = refine_implicit_surface(surface, attempt, progress, pile);
       Vec3 spot;
-      if (result.refinement_runaway && !last && runaway_spot(result.mesh, options.criteria.edge_length, spot)) {
+      if (pile) spot = *pile;
+      if (result.refinement_runaway && !last && (pile || runaway_spot(result.mesh, options.criteria.edge_length, spot))) {
+        runaway_stopped_at = result.runaway_stopped_at;
         if (!drop_protection_near(attempt.features.polylines, spot, reach, dropped)) drop_all();
         report_progress(progress, "refinement (again, without the features it ran away next to)", 0.0);
         continue;
       }
       result.mesher_retries = static_cast<std::size_t>(retries);
+      if (!result.refinement_runaway) result.runaway_stopped_at = runaway_stopped_at;
       result.uncovered.insert(result.uncovered.end(), dropped.begin(), dropped.end());
       return result;
     } catch (const CGAL::Failure_exception& e) {
