@@ -100,7 +100,7 @@ struct ImplicitMeshingResult {
   std::size_t data_seeds = 0;         ///< data seeds inserted before refinement
   std::size_t refinement_steps = 0;   ///< Mesher_3 steps
   bool refinement_stalled = false;    ///< stopped after many steps without a new vertex
-  bool refinement_runaway = false;    ///< stopped: still adding vertices long after passing the expected count
+  bool refinement_runaway = false;    ///< stopped: piling new vertices onto one spot, or far past the expected count
   std::size_t mesher_retries = 0;     ///< refinements run again after a CGAL failure next to a feature
   std::size_t runaway_stopped_at = 0; ///< vertices of the last refinement stopped as running away (0: none was)
 };

@@ -174,6 +174,7 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::
       break;
     }
     if (now >= next_density_check) {
+      next_density_check = now + kRunawayWindow;
       const NewVertexCluster densest = densest_new_vertices(c3t3, edge_length, stamp);
       if (debug) std::fprintf(stderr, "refine: %zu vertices, densest cell of the new ones %zu\n", now, densest.count);
       if (densest.count > kRunawayWindow / 8) {
@@ -183,7 +184,6 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::
         break;
       }
     }
-    if (now >= next_density_check) next_density_check = now + kRunawayWindow;
     if (steps % 64 != 0) continue;
     const Clock::time_point t = Clock::now();
     if (grew) last_growth = t, grew = false;
