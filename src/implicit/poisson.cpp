@@ -1,5 +1,7 @@
 // Poisson implicit function (Kazhdan et al. 2006) through CGAL's
 // Poisson_reconstruction_function (thesis 7.3, 7.4).
+#include "implicit/poisson_refinement_order.h"  // before CGAL's Poisson
+
 #include <CGAL/Eigen_solver_traits.h>
 #include <CGAL/Poisson_reconstruction_function.h>
 #include <CGAL/property_map.h>
@@ -9,6 +11,7 @@
 #include <cmath>
 #include <random>
 #include <tuple>
+#include <type_traits>
 
 #include "pointset/cgal_bridge.h"
 #include "sharpmesh/implicit.h"
@@ -21,6 +24,8 @@ using detail::Kernel;
 using PointWithNormal = std::pair<detail::Point3, detail::Vector3>;
 using Function = CGAL::Poisson_reconstruction_function<Kernel>;
 using Triangulation = Function::Triangulation;
+static_assert(std::is_same_v<Triangulation, detail::PoissonTriangulation>,
+              "the deterministic refinement queue (poisson_refinement_order.h) must match CGAL's Poisson triangulation");
 using Cell = Triangulation::Cell;
 using Cell_handle = Triangulation::Cell_handle;
 

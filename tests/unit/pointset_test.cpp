@@ -218,7 +218,9 @@ TEST(Normals, ShiftedNeighbourhoodsKeepTheFaceNormalNextToACrease) {
   EXPECT_GT(mean_error_deg(jet), 10.0);
   EXPECT_LT(mean_error_deg(shifted), 3.0);
   for (std::uint32_t i = 0; i < shifted.size(); ++i)
-    if (!std::binary_search(near_edges.begin(), near_edges.end(), i)) ASSERT_EQ(shifted.normals[i], (Vec3{0, 0, 0}));
+    if (!std::binary_search(near_edges.begin(), near_edges.end(), i)) {
+      ASSERT_EQ(shifted.normals[i], (Vec3{0, 0, 0}));
+    }
   EXPECT_THROW(estimate_shifted_normals_at(shifted, near_edges, {4, 18}), InvalidArgument);
 }
 
