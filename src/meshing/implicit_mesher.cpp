@@ -470,7 +470,12 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
   // CGAL's initial points are intersections of random segments in the
   // domain ball with the surface, drawn until enough are found: when the
   // function has one sign throughout the ball, that loop never ends (a flat
-  // open cloud's Poisson function). Refused here.
+  // open cloud's Poisson function). They are drawn only when random points
+  // of the ball find both signs. A function restricted to a thin band around
+  // open data (blade 50k) is negative in too small a volume for that test;
+  // its data seeds then start the refinement, and only when there are none
+  // either is the function refused (after the seeds, below).
+  bool both_signs = false;
   {
     std::mt19937_64 generator(options.seed);
     std::uniform_real_distribution<double> coordinate(-1, 1);
@@ -480,9 +485,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
       if (norm(d) > 1) continue;
       (surface.value(surface.bounding_center() + domain_radius * d) < 0 ? negative : positive) += 1;
     }
-    if (negative < 3 || positive < 3)
-      throw NumericalFailure("the implicit function has one sign throughout its bounding sphere: there is no surface to mesh "
-                             "(a flat or degenerate cloud?)");
+    both_signs = negative >= 3 && positive >= 3;
   }
   std::function<double(const detail::Point3&)> function = [&surface](const detail::Point3& p) {
     return surface.value(detail::from_cgal(p));
@@ -530,13 +533,16 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
     }
     report_progress(progress, "protecting balls", 1.0);
   }
-  insert_surface_seeds(c3t3, domain);
+  if (both_signs) insert_surface_seeds(c3t3, domain);
   if (!options.data_seeds.empty()) {
     const double spacing = options.seed_spacing > 0 ? options.seed_spacing : options.criteria.edge_length;
     std::vector<double> spacings = options.data_seed_spacings;
     spacings.resize(options.data_seeds.size(), spacing);
     result.data_seeds = insert_data_seeds(c3t3, domain, surface, options.data_seeds, spacings, progress);
   }
+  if (!both_signs && result.data_seeds == 0 && result.protecting_balls == 0)
+    throw NumericalFailure("the implicit function has one sign throughout its bounding sphere: there is no surface to mesh "
+                           "(a flat or degenerate cloud?)");
 
   report_progress(progress, "refinement", 0.0);
   CGAL::Mesh_3::Mesher_3<C3t3, Criteria, Domain> mesher(c3t3, domain, criteria, CGAL::MANIFOLD, max_vertices, &error);
