@@ -135,12 +135,16 @@ NewVertexCluster densest_new_vertices(const C3t3& c3t3, double edge_length, std:
 // time until the last new vertex).
 // Runaway: CGAL's manifold repair can keep inserting points around a vertex
 // next to protecting balls that it cannot make manifold, ever more slowly.
-// Every kRunawayWindow new vertices, when more than an eighth of them lie in
-// one cell of the edge length, the refinement ends as `runaway`. Healthy
-// runs of seven CGAL models at 50k points, delta 1.5 and 3.5, put at most 40
-// in one cell; couplingdown seed 3 at delta 1.5 put 231 there at 20k
-// vertices, 3 s in (before, only the vertex bound below caught it, at 40k
-// vertices after 105 s; the whole run now takes 14 s instead of 112). Past
+// Every kRunawayWindow new vertices, the cell of the edge length holding
+// most of them is found; when two windows in a row put more than an eighth
+// of their vertices into the same spot, the refinement ends as `runaway`.
+// Healthy runs of seven CGAL models at 50k points, delta 1.5 and 3.5, put
+// at most 40 in one cell; a run-away repair puts about 400 there window
+// after window (couplingdown seed 3 at delta 1.5: from 20k vertices on,
+// stopped at 21k, 3 s in; before, only the vertex bound below caught it, at
+// 40k vertices after 105 s, and the whole run now takes 14 s instead of
+// 112). One window alone is not enough: anchor 40k at delta 7 puts 135 new
+// vertices around a corner once while refining it, then none. Past
 // `runaway_vertices` it ends as well. Both are counts, not times, so the
 // result does not depend on the machine.
 constexpr std::size_t kRunawayWindow = 1024;
@@ -157,6 +161,7 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::
   Clock::time_point last_growth = start, last_report = start;
   bool grew = false;
   std::size_t next_density_check = vertices + kRunawayWindow, stamp = 0;
+  std::optional<Vec3> previous_pile;  // where the last window piled its vertices
   densest_new_vertices(c3t3, edge_length, stamp);  // the initial vertices are not new
   while (!mesher.is_algorithm_done()) {
     mesher.one_step();
@@ -177,12 +182,14 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::
       next_density_check = now + kRunawayWindow;
       const NewVertexCluster densest = densest_new_vertices(c3t3, edge_length, stamp);
       if (debug) std::fprintf(stderr, "refine: %zu vertices, densest cell of the new ones %zu\n", now, densest.count);
-      if (densest.count > kRunawayWindow / 8) {
+      const bool piled = densest.count > kRunawayWindow / 8;
+      if (piled && previous_pile && distance(*previous_pile, densest.centre) < edge_length) {
         result.refinement_runaway = true;
         result.runaway_stopped_at = now;
         runaway_spot = densest.centre;
         break;
       }
+      previous_pile = piled ? std::optional<Vec3>(densest.centre) : std::nullopt;
     }
     if (steps % 64 != 0) continue;
     const Clock::time_point t = Clock::now();

@@ -201,9 +201,10 @@ TEST(FeaturePreservingReconstruction, FandiskThirtyThousandPointsCloserThanPif) 
 // wall, rims that come close to each other. Their polylines made CGAL's
 // Mesh_3 fail ("already inserted on surface") or run away in its manifold
 // repair; those polylines are dropped and reported, and the result is
-// closed, manifold and close to the model. This sample runs away once: the
-// pile of new vertices stops it at 5k vertices, below the 8k facets
-// expected (the vertex bound alone stopped it at 11k).
+// closed, manifold and close to the model. This sample runs away once: its
+// pile of new vertices, at the same spot in two windows, stops it at 6k
+// vertices, below the 8k facets expected (the vertex bound alone stopped it
+// at 11k).
 TEST(FeaturePreservingReconstruction, CouplingdownMeshesDespiteCloseFeatures) {
   const std::string path = test::data_file("meshes/couplingdown.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
