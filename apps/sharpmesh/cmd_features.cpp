@@ -31,6 +31,10 @@ void add_feature_options(CLI::App& sub, FeatureOptions& f) {
   sub.add_option("--denoise-k", f.denoise_k,
                  "Jet-smooth over k neighbours before the VCM; -1 = automatic (noise above half the spacing), 0 = never")
       ->capture_default_str()->group(g);
+  sub.add_flag("!--no-corner-fitting", f.fit_corner_points,
+               "Keep corner points (Algorithm 1) out of the polylines, as the thesis does; by default those on the line of two "
+               "faces 45+ degrees apart become edge points")
+      ->group(g);
 }
 
 nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, double diagonal) {
@@ -46,7 +50,7 @@ nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, d
            {{"offset_radius", o.offset_radius}, {"convolution_radius", o.convolution_radius}, {"t1", o.t1}, {"t2", o.t2},
             {"cluster_k", o.cluster_k}, {"cluster_angle", o.cluster_angle}, {"min_cluster_size", o.min_cluster_size},
             {"successor_k", o.successor_k}, {"junction_factor", o.junction_factor},
-            {"denoise_k", o.denoise_k}}},
+            {"denoise_k", o.denoise_k}, {"fit_corner_points", o.fit_corner_points}}},
           {"derived",
            {{"R", length_json(r.offset_radius, diagonal)}, {"r", length_json(r.convolution_radius, diagonal)},
             {"noise_estimate", length_json(r.noise_estimate, diagonal)},
@@ -54,6 +58,7 @@ nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, d
             {"denoise_passes", r.denoise_passes}}},
           {"counts",
            {{"points", r.points.size()}, {"edge_points", r.edge_points}, {"corner_points", r.corner_points},
+            {"fitted_corner_points", r.fitted_corner_points},
             {"unsharpened_edge_points", r.unsharpened_edge_points}, {"clusters", r.clusters}, {"pruned_clusters", r.pruned_clusters}, {"off_data_polylines", r.off_data_polylines}, {"polylines", r.graph.polylines.size()},
             {"closed_polylines", closed}, {"darts", counts[0]}, {"cusps", counts[1]}, {"corners", counts[2]}}},
           {"junctions", junctions},

@@ -36,6 +36,12 @@ struct FeatureOptions {
   /// automatic (when the estimated noise exceeds half the average spacing),
   /// 0 = never.
   int denoise_k = -1;
+  /// Beyond the thesis: corner points (Algorithm 1) next to a sharp edge are
+  /// fitted like edge points, by RANSAC planes; those within r of the line
+  /// of two faces at least 45 degrees apart become edge points on it. Faces
+  /// narrower than r (a wall three spacings high) leave no edge points, and
+  /// polylines otherwise stop r short of every corner.
+  bool fit_corner_points = true;
   void check() const;
 };
 
@@ -75,6 +81,7 @@ struct FeatureResult {
   int denoise_k = 0;                 ///< jet-smoothing neighbours used before the VCM (0: none)
   int denoise_passes = 0;            ///< jet-smoothing passes run
   std::size_t edge_points = 0, corner_points = 0;
+  std::size_t fitted_corner_points = 0;    ///< corner points that became edge points (fit_corner_points)
   std::size_t unsharpened_edge_points = 0;  ///< edge points dropped: no two patches around them
   std::size_t clusters = 0, pruned_clusters = 0;
   std::size_t off_data_polylines = 0;  ///< traced polylines dropped: their median vertex lies off the data

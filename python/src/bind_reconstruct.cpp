@@ -61,7 +61,7 @@ void bind_reconstruct(py::module_& m) {
         [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
            double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double seed_spacing, bool no_flattening, const std::string& normals, int normal_k, int orient_k,
            bool recompute_normals, bool no_sign_repair, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
-           double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k,
+           double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k, bool fit_corner_points,
            const py::object& progress) {
           const PointSet set = to_point_set(points, point_normals);
           ReconstructOptions o;
@@ -95,7 +95,7 @@ void bind_reconstruct(py::module_& m) {
           o.max_facets = max_facets;
           o.seed = seed;
           o.features = feature_options(offset_radius, convolution_radius, t1, t2, cluster_k, cluster_angle, successor_k,
-                                       junction_factor, denoise_k);
+                                       junction_factor, denoise_k, fit_corner_points);
           ProgressBridge bridge(progress);
           const ReconstructResult r = without_gil(bridge, [&] { return reconstruct(set, o, bridge.callback()); });
           const py::object extracted = o.feature_mode == FeatureMode::Extract ? make_features(r.features) : py::object(py::none());
@@ -112,7 +112,7 @@ void bind_reconstruct(py::module_& m) {
         py::arg("max_facets") = d.max_facets, py::arg("seed") = d.seed, py::arg("offset_radius") = f.offset_radius,
         py::arg("convolution_radius") = f.convolution_radius, py::arg("t1") = f.t1, py::arg("t2") = f.t2,
         py::arg("cluster_k") = f.cluster_k, py::arg("cluster_angle") = f.cluster_angle, py::arg("successor_k") = f.successor_k,
-        py::arg("junction_factor") = f.junction_factor, py::arg("denoise_k") = f.denoise_k, py::arg("progress") = py::none(),
+        py::arg("junction_factor") = f.junction_factor, py::arg("denoise_k") = f.denoise_k, py::arg("fit_corner_points") = f.fit_corner_points, py::arg("progress") = py::none(),
         R"(Point cloud -> mesh with sharp edges, as `sharpmesh reconstruct` (thesis Ch. 7) -> Reconstruction.
 
 delta: mesh size d' = delta x average spacing (7.3.2); no_features: the PIF baseline; features: protect these polylines

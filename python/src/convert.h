@@ -87,5 +87,6 @@ py::dict stages_dict(const std::vector<StageTiming>& stages);
 py::object make_features(const FeatureResult& result);
 /// Checked feature options (the flags of `sharpmesh features`).
 FeatureOptions feature_options(double offset_radius, double convolution_radius, double t1, double t2, int cluster_k,
-                               double cluster_angle, int successor_k, double junction_factor, int denoise_k);
+                               double cluster_angle, int successor_k, double junction_factor, int denoise_k,
+                               bool fit_corner_points);
 }  // namespace sharpmesh::python

@@ -173,6 +173,15 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
       result.corner_points += f.type == PointClass::Corner;
     }
     result.edge_points = edge_points.size();
+    // Corner points join the edge points here; the sharpening below keeps
+    // only those it can put on the line of two faces.
+    if (options.fit_corner_points)
+      for (std::size_t i = 0; i < points.size(); ++i)
+        if (result.points[i].type == PointClass::Corner) {
+          edge_ids.push_back(static_cast<std::uint32_t>(i));
+          edge_points.push_back(points[i]);
+          edge_directions.push_back(result.points[i].direction);
+        }
     detail::SharpeningOptions sharpening;
     sharpening.radius = 3 * result.convolution_radius;
     sharpening.min_angle_deg = options.min_dihedral_angle;
@@ -196,8 +205,15 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
     sharpening.plane_radius = 5 * avg;
     sharpening.face_reach = 1.5 * avg + 2 * noise;
     sharpening.plane_min_angle_deg = 30;
-    result.unsharpened_edge_points =
-        detail::sharpen_edge_points(*cloud, result.points, *index, sharpening, edge_ids, edge_points, edge_directions);
+    // A corner point is taken only by a RANSAC pair at least 45 degrees apart
+    // (30 let the adjacent plane strips of holes 8 spacings wide through:
+    // anchor 50k lost its hole rims) within r of it (a point farther from
+    // every edge than the band of edge points is no edge's).
+    sharpening.corner_min_angle_deg = 45;
+    sharpening.corner_shift = result.convolution_radius;
+    detail::sharpen_edge_points(*cloud, result.points, *index, sharpening, edge_ids, edge_points, edge_directions);
+    for (std::uint32_t id : edge_ids) result.fitted_corner_points += result.points[id].type == PointClass::Corner;
+    result.unsharpened_edge_points = result.edge_points - (edge_ids.size() - result.fitted_corner_points);
   }
   std::vector<detail::EdgeCluster> clusters;
   {

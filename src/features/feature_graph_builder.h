@@ -36,6 +36,8 @@ struct SharpeningOptions {
   std::size_t min_plane_support = 8;
   double face_reach = 0;
   double plane_min_angle_deg = 30;  ///< the fallback's planes at least this far apart
+  double corner_min_angle_deg = 45;  ///< corner points: the planes at least this far apart
+  double corner_shift = 0;  ///< a corner point moves at most this far onto a plane pair's line
 };
 
 /// Projects each edge point onto the intersection line of the two planes

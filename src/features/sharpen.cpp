@@ -19,6 +19,12 @@
 // planes that both faces reach and that lies on the data is the edge. The
 // first fit is kept when no plane pair qualifies and it is not clearly off
 // the data; otherwise the point is dropped.
+//
+// Corner points (FeatureOptions::fit_corner_points) go straight to the
+// RANSAC planes, and only a pair at least corner_min_angle_deg apart whose
+// line passes within corner_shift is taken: next to a corner and on faces
+// narrower than r, the convolved VCM sees three patches, yet most such
+// points lie on one edge's two faces.
 #include <Eigen/Eigenvalues>
 
 #include <tbb/parallel_for.h>
@@ -182,6 +188,7 @@ std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFe
   const std::size_t n = edge_ids.size();
   std::vector<char> keep(n, 0);
   const double sin_min = std::sin(o.plane_min_angle_deg * M_PI / 180.0);
+  const double sin_corner = std::sin(o.corner_min_angle_deg * M_PI / 180.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<std::uint32_t> ids, nearest;
     std::vector<double> d2;
@@ -195,7 +202,9 @@ std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFe
       index.within(p, o.radius, ids);
       std::sort(ids.begin(), ids.end());
       EdgeFit fit, primary;
-      const bool fitted = fit_smooth_groups(cloud, features, ids, p, o, primary) == GroupFit::Fitted && (primary.position - q).norm() <= o.radius;
+      const bool corner = features[edge_ids[e]].type == PointClass::Corner;
+      const double max_shift = corner ? o.corner_shift : o.plane_radius;
+      const bool fitted = !corner && fit_smooth_groups(cloud, features, ids, p, o, primary) == GroupFit::Fitted && (primary.position - q).norm() <= o.radius;
       const double primary_offset = fitted ? data_offset(primary.position) : INFINITY;
       bool found = primary_offset <= o.close_to_data;
       if (found) fit = primary;
@@ -211,10 +220,10 @@ std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFe
           for (std::size_t b = a + 1; b < planes.size(); ++b) {
             Eigen::Vector3d d = planes[a].plane.normal.cross(planes[b].plane.normal);
             const double sin_angle = d.norm();
-            if (sin_angle < sin_min) continue;
+            if (sin_angle < (corner ? sin_corner : sin_min)) continue;
             const Eigen::Vector3d x = closest_on_intersection(planes[a].plane, planes[b].plane, q);
             const double offset = (x - q).norm();
-            if (offset >= best || offset > o.plane_radius) continue;
+            if (offset >= best || offset > max_shift) continue;
             // Both faces reach the line there (their intersection is an edge of
             // the data, not a virtual one), and the line lies on the data.
             if (nearest_distance(planes[a].inliers, x) > o.face_reach || nearest_distance(planes[b].inliers, x) > o.face_reach) continue;

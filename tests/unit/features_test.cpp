@@ -256,3 +256,35 @@ TEST(FeatureGraph, ShortRimCirclesOfAThinRodClose) {
     for (const Vec3& p : circle) EXPECT_NEAR(std::hypot(p[0], p[1]), 0.12, 0.01);
   }
 }
+
+// A step 2.2 spacings high, narrower than the convolution radius r (2.5
+// spacings): most points of its wall see three patches and are corner
+// points (Algorithm 1), so the thesis's polylines miss much of both edges.
+// Fitted by RANSAC planes, those corner points give the two edges.
+TEST(FeatureGraph, CornerPointsFittedRecoverAStepNarrowerThanR) {
+  const SurfaceMesh prism = test::stepped_prism_mesh(0.06);
+  const PointSet cloud = sample(prism, 30000);
+  FeatureOptions thesis;
+  thesis.fit_corner_points = false;
+  const FeatureResult fitted = extract_features(cloud), plain = extract_features(cloud, thesis);
+  EXPECT_GT(fitted.convolution_radius, 0.06);
+  EXPECT_GT(fitted.fitted_corner_points, 0u);
+  EXPECT_EQ(plain.fitted_corner_points, 0u);
+  FeatureEvalOptions options;
+  options.tolerance = 0.005;
+  const FeatureEvaluation with = evaluate_features(fitted.graph.polylines, {}, prism, options);
+  const FeatureEvaluation without = evaluate_features(plain.graph.polylines, {}, prism, options);
+  EXPECT_GT(with.recall, 0.95);   // measured 0.98
+  EXPECT_GT(with.precision, 0.95);
+  EXPECT_LT(without.recall, 0.92);  // measured 0.88
+  // Along the step (|z| < 0.8): polyline points on both of its edges.
+  std::size_t near_bottom = 0, near_top = 0;
+  for (const Polyline& line : fitted.graph.polylines)
+    for (const Vec3& p : line) {
+      if (std::abs(p[2]) > 0.8) continue;
+      near_bottom += std::hypot(p[0], p[1] - 1) < 0.01;
+      near_top += std::hypot(p[0], p[1] - 1.06) < 0.01;
+    }
+  EXPECT_GE(near_bottom, 6u);
+  EXPECT_GE(near_top, 6u);
+}

@@ -50,6 +50,27 @@ SurfaceMesh chamfered_cube_mesh(double c) {
   return m;
 }
 
+SurfaceMesh stepped_prism_mesh(double h) {
+  SurfaceMesh m;
+  // The hexagon A B C D E F at z = -1 (vertices 0-5) and z = 1 (6-11); D is
+  // the step's concave corner and sees every other vertex.
+  const double xy[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {0, 1}, {0, 1 + h}, {-1, 1 + h}};
+  for (double z : {-1.0, 1.0})
+    for (const auto& p : xy) m.vertices.push_back({p[0], p[1], z});
+  auto tri = [&](int a, int b, int d) { m.faces.push_back({std::uint32_t(a), std::uint32_t(b), std::uint32_t(d)}); };
+  for (int k : {4, 5, 0, 1}) {
+    const int next = (k + 1) % 6;
+    tri(3, next, k);              // bottom, seen from below
+    tri(6 + 3, 6 + k, 6 + next);  // top
+  }
+  for (int k = 0; k < 6; ++k) {  // the six side quads, counter-clockwise from outside
+    const int a = k, b = (k + 1) % 6;
+    tri(a, b, 6 + b);
+    tri(a, 6 + b, 6 + a);
+  }
+  return m;
+}
+
 SurfaceMesh sphere_mesh(int levels, double radius) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   SurfaceMesh m;

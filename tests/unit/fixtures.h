@@ -16,6 +16,9 @@ SurfaceMesh cube_mesh(double half_size = 0.5);
 /// The cube [-1, 1]^3 with its edge at x = y = 1 cut by the plane
 /// x + y = 2 - c: a chamfer face c sqrt(2) wide between two 135-degree edges.
 SurfaceMesh chamfered_cube_mesh(double c);
+/// The prism z in [-1, 1] over the hexagon (-1,-1) (1,-1) (1,1) (0,1) (0,1+h)
+/// (-1,1+h): a step h high, a concave and a convex 90-degree edge h apart.
+SurfaceMesh stepped_prism_mesh(double h);
 /// Unit sphere: an icosahedron subdivided `levels` times, projected onto the sphere.
 SurfaceMesh sphere_mesh(int levels = 3, double radius = 1.0);
 /// Closed cylinder of radius r, height h, around z, with `segments` sides.

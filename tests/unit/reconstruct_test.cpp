@@ -184,20 +184,30 @@ TEST(Reconstruct, FandiskThirtyThousandPointsWithinTwoPercentOfTheDiagonal) {
 }
 
 // The feature pipeline on the same sparse cloud: closed, manifold, and
-// closer to the model than PIF at the same delta.
+// closer to the model than PIF at the same delta, along its sharp edges too.
+// Most protected segments are mesh edges: 89% with fitted corner points
+// (932 of 1,042; the rest lie off the implicit surface around junctions
+// and are reported as gaps), 97% without (but 5,400 facets at 3.0-3.4 U
+// instead of 6,000 at 1.5-1.9 U over two samples).
 TEST(FeaturePreservingReconstruction, FandiskThirtyThousandPointsCloserThanPif) {
   const std::string path = test::data_file("meshes/fandisk.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh fandisk = read_mesh(path);
   const PointSet cloud = sample(fandisk, 30000);
   const ReconstructResult r = reconstruct(cloud, ReconstructOptions{});
-  EXPECT_GT(r.meshing.represented_segments, 0.95 * r.meshing.protected_segments);
+  EXPECT_GT(r.meshing.represented_segments, 0.85 * r.meshing.protected_segments);
+  EXPECT_FALSE(r.meshing.uncovered.empty());
   expect_valid_and_close(r.mesh, fandisk, 0.015);
   ReconstructOptions pif;
   pif.feature_mode = FeatureMode::None;
   DistanceOptions d;
   d.samples = 50000;
-  EXPECT_LT(compare_meshes(r.mesh, fandisk, d).hausdorff, compare_meshes(reconstruct(cloud, pif).mesh, fandisk, d).hausdorff);
+  const DistanceReport ours = compare_meshes(r.mesh, fandisk, d), theirs = compare_meshes(reconstruct(cloud, pif).mesh, fandisk, d);
+  EXPECT_LT(ours.hausdorff, theirs.hausdorff);
+  EXPECT_LT(ours.sharp_mean, 0.5 * theirs.sharp_mean);
+  ReconstructOptions thesis;
+  thesis.features.fit_corner_points = false;
+  EXPECT_LT(ours.hausdorff, compare_meshes(reconstruct(cloud, thesis).mesh, fandisk, d).hausdorff);
 }
 
 // CGAL's couplingdown at 50k points: chamfers 1.4 spacings wide, a thin
@@ -207,12 +217,15 @@ TEST(FeaturePreservingReconstruction, FandiskThirtyThousandPointsCloserThanPif) 
 // closed, manifold and close to the model. This sample runs away once: its
 // pile of new vertices, at the same spot in two windows, stops it at 6k
 // vertices, below the 8k facets expected (the vertex bound alone stopped it
-// at 11k).
+// at 11k). It does so with the thesis's polylines (corner points left out);
+// the default's fitted corner points change them, and it no longer runs away.
 TEST(FeaturePreservingReconstruction, CouplingdownMeshesDespiteCloseFeatures) {
   const std::string path = test::data_file("meshes/couplingdown.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh part = read_mesh(path);
-  const ReconstructResult r = reconstruct(sample(part, 50000), ReconstructOptions{});
+  ReconstructOptions options;
+  options.features.fit_corner_points = false;
+  const ReconstructResult r = reconstruct(sample(part, 50000), options);
   EXPECT_FALSE(r.meshing.refinement_runaway);
   EXPECT_GT(r.meshing.runaway_stopped_at, 0u);
   EXPECT_LT(static_cast<double>(r.meshing.runaway_stopped_at), r.estimated_facets);
