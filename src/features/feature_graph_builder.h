@@ -72,7 +72,10 @@ TracedPolyline trace_polyline(const EdgeCluster& cluster, const std::vector<Vec3
 /// through a junction.
 /// `distance_to_data`, when given, checks each meeting point: ends whose
 /// lines meet farther than `max_offset` from the data stay apart, as darts.
+/// `max_radius` (0: none) caps r_junc, except between two collinear ends
+/// facing each other (one edge traced in two pieces).
 FeatureGraph connect_polylines(std::vector<TracedPolyline> polylines, double junction_factor,
-                               const std::function<double(const Vec3&)>& distance_to_data = {}, double max_offset = 0);
+                               const std::function<double(const Vec3&)>& distance_to_data = {}, double max_offset = 0,
+                               double max_radius = 0);
 
 }  // namespace sharpmesh::detail

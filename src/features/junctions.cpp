@@ -4,7 +4,11 @@
 // polyline runs between two junctions or darts (what the protecting balls of
 // 7.3.2 need): two ends of one long polyline close a loop; two collinear ends
 // are joined into one polyline instead of a false cusp; a polyline passing
-// through a junction is split there.
+// through a junction is split there. r_junc is capped (extract: 8 average
+// spacings; the thesis's 5 segments are 20 spacings with our r_p floor of
+// 4), except between two pieces of one edge: ends of different edges 3-4
+// spacings apart (couplingdown's steps) were merged into one junction
+// between them.
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -22,8 +26,16 @@ struct End {
   bool back;        ///< the last vertex (else the first)
   Vec3 position;
   Vec3 outward;     ///< edge direction pointing out of the polyline
-  double r_junc;
+  double r_junc;    ///< capped at max_radius
+  double r_gap = 0; ///< r_junc uncapped: how far a collinear piece of the same edge may be
 };
+
+// Whether b continues a's edge: the ends face each other and b lies on a's line.
+bool continues(const End& a, const End& b, double cos_collinear) {
+  const Vec3 u = (1.0 / norm(a.outward)) * a.outward, offset = b.position - a.position;
+  return dot(a.outward, b.outward) < cos_collinear * norm(a.outward) * norm(b.outward) && dot(offset, u) > 0 &&
+         norm(offset - dot(offset, u) * u) < 0.25 * norm(offset);
+}
 
 End make_end(const TracedPolyline& line, std::size_t index, bool back, double factor) {
   const std::size_t n = line.vertices.size();
@@ -84,13 +96,22 @@ void set_end(TracedPolyline& line, bool back, const Vec3& p) {
 }  // namespace
 
 FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
-                               const std::function<double(const Vec3&)>& distance_to_data, double max_offset) {
+                               const std::function<double(const Vec3&)>& distance_to_data, double max_offset, double max_radius) {
   const double cos_collinear = std::cos(150.0 * M_PI / 180.0);
   std::vector<End> ends;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (lines[i].vertices.size() < 2) continue;
     ends.push_back(make_end(lines[i], i, false, factor));
     ends.push_back(make_end(lines[i], i, true, factor));
+  }
+  // Two pieces of one edge (or a loop's two ends) keep the thesis's r_junc.
+  auto pair_radius = [&](const End& a, const End& b) {
+    const bool same_edge = continues(a, b, cos_collinear) && continues(b, a, cos_collinear);
+    return same_edge ? std::max(a.r_gap, b.r_gap) : std::max(a.r_junc, b.r_junc);
+  };
+  for (End& e : ends) {
+    e.r_gap = e.r_junc;
+    if (max_radius > 0) e.r_junc = std::min(e.r_junc, max_radius);
   }
   // Group ends within r_junc of each other; the two ends of one polyline are
   // only grouped when the polyline is long enough to be a loop.
@@ -101,7 +122,7 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
   for (std::size_t a = 0; a < ends.size(); ++a)
     for (std::size_t b = a + 1; b < ends.size(); ++b) {
       const double d = distance(ends[a].position, ends[b].position);
-      if (d < std::max(ends[a].r_junc, ends[b].r_junc)) pairs.push_back({d, a, b});
+      if (d < pair_radius(ends[a], ends[b])) pairs.push_back({d, a, b});
     }
   std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) { return x.d < y.d; });
   DisjointSets groups(ends.size());
@@ -120,7 +141,7 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
       // with ends 0.0002-0.002 apart, stayed open, their 470 balls each
       // shrank to the 5% floor and 64% of all protected segments were not
       // mesh edges.
-      const double r = std::max(ends[a].r_junc, ends[b].r_junc);
+      const double r = pair_radius(ends[a], ends[b]);
       const double length = lines[ends[a].polyline].length();
       const bool touching = pair.d < std::min(0.4 * r, 0.1 * length);
       if ((length < 4 * r && !touching) || dot(ends[a].outward, ends[b].outward) > -0.5) continue;
@@ -132,6 +153,7 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
         merged.push_back(&ends[e]);
         r = std::max(r, ends[e].r_junc);
       }
+    if (merged.size() == 2) r = pair_radius(*merged[0], *merged[1]);
     const bool loop = merged.size() == 2 && merged[0]->polyline == merged[1]->polyline;
     if (!loop && !group_meets(merged, r)) continue;
     groups.unite(a, b);
@@ -177,6 +199,28 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
     }
     for (const End& e : group) set_end(lines[e.polyline], e.back, p);
     nodes.push_back({p, radius, list});
+  }
+
+  // A dart pointing at a junction on its own line within the uncapped
+  // r_junc ends there: the rest of its edge was not traced (cube-meshed
+  // 50k: 9 spacings missing before a corner).
+  for (Node& dart : nodes) {
+    if (dart.ends.size() != 1) continue;
+    const End& e = ends[dart.ends[0]];
+    Node* best = nullptr;
+    double best_d = e.r_gap;
+    for (Node& node : nodes) {
+      if (node.ends.size() < 2) continue;
+      const double d = distance(e.position, node.position);
+      if (d < best_d && continues(e, {0, false, node.position, -1.0 * e.outward, 0, 0}, cos_collinear)) {
+        best_d = d;
+        best = &node;
+      }
+    }
+    if (!best) continue;
+    set_end(lines[e.polyline], e.back, best->position);
+    best->ends.push_back(dart.ends[0]);
+    dart.ends.clear();
   }
 
   // Join the two pieces meeting at a node of degree 2 when they are collinear

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "features/feature_graph_builder.h"
 #include "fixtures.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
@@ -287,4 +288,60 @@ TEST(FeatureGraph, CornerPointsFittedRecoverAStepNarrowerThanR) {
     }
   EXPECT_GE(near_bottom, 6u);
   EXPECT_GE(near_top, 6u);
+}
+
+namespace {
+
+// A straight traced polyline from `from` to `to`, a vertex every 4 units
+// (the r_p floor is 4 average spacings, so r_junc = 5 x 4 = 20 units).
+detail::TracedPolyline straight(const Vec3& from, const Vec3& to) {
+  detail::TracedPolyline line;
+  const double length = distance(from, to);
+  const int n = static_cast<int>(std::round(length / 4));
+  const Vec3 direction = (1.0 / length) * (to - from);
+  for (int i = 0; i <= n; ++i) {
+    line.vertices.push_back(from + (static_cast<double>(i) / n) * (to - from));
+    line.directions.push_back(direction);
+  }
+  return line;
+}
+
+std::size_t junctions_near(const FeatureGraph& graph, const Vec3& p, double radius, int degree) {
+  std::size_t count = 0;
+  for (const Junction& j : graph.junctions) count += distance(j.position, p) < radius && j.degree == degree;
+  return count;
+}
+
+}  // namespace
+
+// Two corners 12 units apart, each where two edges meet: with the thesis's
+// r_junc (20 units here) their four ends became one junction between them;
+// r_junc capped at 8 keeps the two corners.
+TEST(FeatureGraph, CornersCloserThanTheThesisRJuncStayApart) {
+  std::vector<detail::TracedPolyline> lines = {straight({-40, 0, 0}, {-2, 0, 0}), straight({0, -40, 0}, {0, -2, 0}),
+                                               straight({-40, 0, 12}, {-2, 0, 12}), straight({0, -40, 12}, {0, -2, 12})};
+  const FeatureGraph capped = detail::connect_polylines(lines, 5, {}, 0, 8);
+  EXPECT_EQ(junctions_near(capped, {0, 0, 0}, 0.5, 2), 1u);
+  EXPECT_EQ(junctions_near(capped, {0, 0, 12}, 0.5, 2), 1u);
+  const FeatureGraph thesis = detail::connect_polylines(lines, 5, {}, 0, 0);
+  EXPECT_EQ(junctions_near(thesis, {0, 0, 6}, 1.0, 4), 1u);
+}
+
+// A dart pointing at a corner on its own line, 10 units short of it (the
+// rest of its edge was not traced), still ends there; so does a second
+// piece of one edge 12 units from the first.
+TEST(FeatureGraph, PiecesOfOneEdgeJoinBeyondTheCappedRJunc) {
+  const std::vector<detail::TracedPolyline> lines = {straight({-40, 0, 0}, {-10, 0, 0}), straight({0, -40, 0}, {0, -2, 0}),
+                                                     straight({0, 0, 40}, {0, 0, 2}),
+                                                     straight({0, 40, 0}, {0, 80, 0}), straight({0, 92, 0}, {0, 130, 0})};
+  const FeatureGraph graph = detail::connect_polylines(lines, 5, {}, 0, 8);
+  EXPECT_EQ(junctions_near(graph, {0, 0, 0}, 0.5, 3), 1u);
+  // The two collinear pieces become one polyline from y = 40 to 130.
+  std::size_t long_pieces = 0;
+  for (const Polyline& line : graph.polylines) {
+    double length = 0;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) length += distance(line[i], line[i + 1]);
+    long_pieces += length > 85;
+  }
+  EXPECT_EQ(long_pieces, 1u);
 }
