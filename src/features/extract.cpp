@@ -40,9 +40,10 @@ constexpr double kRoughnessRatio = 0.25;
 constexpr int kMaxDenoisePasses = 3;
 // r_junc at most 8 average spacings (beyond the thesis): two segments of
 // the polylines, whose points lie at least 4 spacings apart (the r_p floor).
-// Corpus of 15 models, recall/precision at 0.5%: 0.915/0.934 -> 0.953/0.950
-// at 50k, 0.954/0.969 -> 0.970/0.975 at 200k; a cap of 5 spacings is as
-// good on average but drops corners of cubes at 50k.
+// Corpus of 15 models, recall/precision at 0.5% (with the dart rule of
+// connect_polylines): 0.915/0.934 -> 0.955/0.947 at 50k, 0.954/0.969 ->
+// 0.970/0.974 at 200k; a cap of 5 spacings did as well on average but
+// dropped corners of cubes at 50k.
 constexpr double kMaxJunctionRadius = 8;
 
 // Noise level: median, over a fixed subset of points, of the RMS distance of
