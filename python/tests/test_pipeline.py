@@ -41,6 +41,14 @@ def test_features_of_a_cube_are_its_twelve_edges(cube, cube_cloud):
     assert ev["recalled_corners"] == ev["truth_corners"] == 8
 
 
+def test_corner_fitting_is_on_by_default_and_can_be_turned_off(cube_cloud):
+    fitted = sm.extract_features(cube_cloud.points)
+    thesis = sm.extract_features(cube_cloud.points, fit_corner_points=False)
+    assert fitted.report["fitted_corner_points"] > 0
+    assert thesis.report["fitted_corner_points"] == 0
+    assert thesis.report["corner_points"] == fitted.report["corner_points"]
+
+
 def test_reconstruct_matches_the_cli_on_the_same_input(tmp_path, cli, cube_cloud):
     cloud = tmp_path / "cube.ply"
     sm.write_points(str(cloud), cube_cloud.points)
