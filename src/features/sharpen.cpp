@@ -199,12 +199,15 @@ std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFe
     for (std::size_t e = range.begin(); e != range.end(); ++e) {
       const Vec3& p = cloud.points[edge_ids[e]];
       const Eigen::Vector3d q = eig(p);
-      index.within(p, o.radius, ids);
-      std::sort(ids.begin(), ids.end());
       EdgeFit fit, primary;
       const bool corner = features[edge_ids[e]].type == PointClass::Corner;
       const double max_shift = corner ? o.corner_shift : o.plane_radius;
-      const bool fitted = !corner && fit_smooth_groups(cloud, features, ids, p, o, primary) == GroupFit::Fitted && (primary.position - q).norm() <= o.radius;
+      bool fitted = false;
+      if (!corner) {  // corner points skip the smooth groups: they see three patches
+        index.within(p, o.radius, ids);
+        std::sort(ids.begin(), ids.end());
+        fitted = fit_smooth_groups(cloud, features, ids, p, o, primary) == GroupFit::Fitted && (primary.position - q).norm() <= o.radius;
+      }
       const double primary_offset = fitted ? data_offset(primary.position) : INFINITY;
       bool found = primary_offset <= o.close_to_data;
       if (found) fit = primary;
