@@ -33,7 +33,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
-    bool no_features = false, fixed_balls = false, no_flattening = false, no_sign_repair = false, ascii = false;
+    bool no_features = false, fixed_balls = false, no_flattening = false, no_sign_repair = false, no_data_fit_retry = false, ascii = false;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
@@ -75,6 +75,10 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_flag("--recompute-normals", o->reconstruct.recompute_normals, "Ignore the input's normals and estimate new ones");
   sub->add_flag("--no-sign-repair", o->no_sign_repair,
                 "Keep the normals the Poisson function contradicts (by default they are flipped and Poisson solved again, up to 3 times)");
+  sub->add_flag("--no-data-fit-retry", o->no_data_fit_retry,
+                "Keep the first mesh even when input points lie off it (farther than 1.5 average spacings or the surface-distance criterion; by "
+                "default their normals and those around them are flipped, Poisson solved and meshed again, and the new mesh is kept when it "
+                "leaves a quarter fewer points off)");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
@@ -89,6 +93,7 @@ Command add_reconstruct(CLI::App& app) {
     options.feature_mode = o->no_features ? FeatureMode::None : o->features_file.empty() ? FeatureMode::Extract : FeatureMode::Given;
     options.adapt_balls_to_gap = !o->fixed_balls;
     options.repair_normal_signs = !o->no_sign_repair;
+    options.refit_off_data = !o->no_data_fit_retry;
     options.flatten_features = !o->no_flattening;
     if (o->normals == "auto") {
       options.normal_source = NormalSource::Automatic;
@@ -149,7 +154,7 @@ Command add_reconstruct(CLI::App& app) {
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
           {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"normals", o->normals}, {"normal_k", options.normals.k},
-          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs},
+          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"data_fit_retry", options.refit_off_data},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",
          {{"average_spacing", length_json(result.average_spacing, diagonal)},
@@ -166,6 +171,17 @@ Command add_reconstruct(CLI::App& app) {
           {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
+    if (options.refit_off_data) {
+      report["data_fit"] = {{"points_off_mesh", result.off_data_points},
+                            {"max_distance", length_json(result.max_data_distance, diagonal)},
+                            {"max_distance_avg_spacings", result.average_spacing > 0 ? result.max_data_distance / result.average_spacing : 0.0},
+                            {"retry_ran", result.off_data_points_before_retry > 0},
+                            {"points_off_first_mesh", result.off_data_points_before_retry},
+                            {"retry_flipped_normals", result.off_data_flips}};
+      if (result.off_data_points > 0 && !common->quiet)
+        std::fprintf(stderr, "reconstruct: warning: %zu input points lie off the mesh (farther than 1.5 average spacings or the surface-distance criterion; farthest %.2f spacings): the surface may have closed a hole or a slot there\n",
+                     result.off_data_points, result.max_data_distance / result.average_spacing);
+    }
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);
     report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}, {"runaway", result.meshing.refinement_runaway}};
     if (result.meshing.refinement_runaway && !common->quiet)

@@ -74,6 +74,12 @@ struct ReconstructOptions {
   /// Flip the normals the Poisson function contradicts and solve again
   /// (beyond the thesis; not with check_input_normals = false).
   bool repair_normal_signs = true;
+  /// After meshing, when input points lie farther than max(1.5 avg, the
+  /// surface-distance criterion) + 3 x the noise from the mesh, flip their
+  /// normals (and those around them), solve and mesh again, and keep the
+  /// mesh that leaves a quarter fewer points off (beyond the thesis; with
+  /// repair_normal_signs).
+  bool refit_off_data = true;
   std::size_t max_facets = 5'000'000;
   std::uint32_t seed = 0;
   void check(std::size_t n) const;
@@ -109,6 +115,13 @@ struct ReconstructResult {
   std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect
   std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
+  /// Input points farther than max(1.5 avg, the surface-distance criterion)
+  /// + 3 x the noise from the output mesh: data the surface does not
+  /// represent (with refit_off_data).
+  std::size_t off_data_points = 0;
+  std::size_t off_data_points_before_retry = 0;  ///< off the first mesh when a retry ran (0: none ran)
+  std::size_t off_data_flips = 0;    ///< normals flipped by the kept retry (0: none kept)
+  double max_data_distance = 0;      ///< largest distance of an input point to the output mesh
   std::vector<StageTiming> stages;
 };
 

@@ -29,6 +29,14 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["flattened_vertices"] = r.flattened_vertices;
   counts["restricted_to_data"] = r.restricted;
   counts["boundary_edges"] = r.boundary_edges;
+  if (o.refit_off_data) {
+    py::dict fit;
+    fit["points_off_mesh"] = r.off_data_points;
+    fit["max_distance"] = r.max_data_distance;
+    fit["points_off_first_mesh"] = r.off_data_points_before_retry;
+    fit["retry_flipped_normals"] = r.off_data_flips;
+    report["data_fit"] = fit;
+  }
   derived["average_spacing"] = r.average_spacing;
   derived["d_prime"] = r.d_prime;
   derived["facet_angle_deg"] = r.criteria.angle;
@@ -60,7 +68,7 @@ void bind_reconstruct(py::module_& m) {
   m.def("reconstruct",
         [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
            double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double seed_spacing, bool no_flattening, const std::string& normals, int normal_k, int orient_k,
-           bool recompute_normals, bool no_sign_repair, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
+           bool recompute_normals, bool no_sign_repair, bool no_data_fit_retry, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
            double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k, bool fit_corner_points,
            const py::object& progress) {
           const PointSet set = to_point_set(points, point_normals);
@@ -92,6 +100,7 @@ void bind_reconstruct(py::module_& m) {
           o.orientation.k = orient_k;
           o.recompute_normals = recompute_normals;
           o.repair_normal_signs = !no_sign_repair;
+          o.refit_off_data = !no_data_fit_retry;
           o.max_facets = max_facets;
           o.seed = seed;
           o.features = feature_options(offset_radius, convolution_radius, t1, t2, cluster_k, cluster_angle, successor_k,
@@ -108,7 +117,7 @@ void bind_reconstruct(py::module_& m) {
         py::arg("poisson_spacing") = d.poisson_spacing, py::arg("poisson_thinning") = d.poisson_thinning, py::arg("seed_spacing") = d.data_seed_spacing,
         py::arg("no_flattening") = false, py::arg("normals") = "auto",
         py::arg("normal_k") = d.normals.k, py::arg("orient_k") = d.orientation.k, py::arg("recompute_normals") = false,
-        py::arg("no_sign_repair") = false,
+        py::arg("no_sign_repair") = false, py::arg("no_data_fit_retry") = false,
         py::arg("max_facets") = d.max_facets, py::arg("seed") = d.seed, py::arg("offset_radius") = f.offset_radius,
         py::arg("convolution_radius") = f.convolution_radius, py::arg("t1") = f.t1, py::arg("t2") = f.t2,
         py::arg("cluster_k") = f.cluster_k, py::arg("cluster_angle") = f.cluster_angle, py::arg("successor_k") = f.successor_k,
@@ -124,7 +133,8 @@ seed_spacing x d' projected onto the implicit surface as a vertex (0: none); no_
 edges on the Poisson surface; normals (when
 point_normals is None or recompute_normals): 'auto', 'cvcm', 'jet' or 'pca', over normal_k neighbours, oriented over
 orient_k; no_sign_repair: keep the normals the Poisson function contradicts (by default flipped and
-Poisson solved again, up to 3 times); max_facets: refuse larger estimates (0: no limit); the feature options are those of extract_features().)");
+Poisson solved again, up to 3 times); no_data_fit_retry: keep the first mesh even when input points lie off it (by
+default their normals are flipped and the surface solved and meshed again; report['data_fit']); max_facets: refuse larger estimates (0: no limit); the feature options are those of extract_features().)");
 }
 
 }  // namespace sharpmesh::python

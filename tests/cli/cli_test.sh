@@ -63,7 +63,7 @@ e = json.load(open("e.json"))["evaluation"]
 assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
 assert e["hausdorff"]["fraction_of_diagonal"] < 0.025, e["hausdorff"]
 r = json.load(open("r.json"))
-assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "trim", "write"], r["stages"]
+assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "trim", "data fit", "write"], r["stages"]
 PY
     ;;
   reconstruct-features)  # Chapter 7 end to end: the cube's 12 edges come out as mesh edges
@@ -91,7 +91,8 @@ r = json.load(open("r.json"))
 p = r["protection"]
 assert p["represented_fraction"] == 1.0 and p["uncovered_gaps"] == 0, p
 names = [s["name"] for s in r["stages"]]
-assert names == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "flattening", "trim", "write"], names
+assert names == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "flattening", "trim", "data fit", "write"], names
+assert r["data_fit"]["points_off_mesh"] == 0 and not r["data_fit"]["retry_ran"], r["data_fit"]
 assert r["counts"]["normal_source"] == "cvcm", r["counts"]
 assert r["counts"]["flattened_vertices"] > 0 and r["counts"]["data_seeds"] >= 0, r["counts"]
 PY
