@@ -76,9 +76,9 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_flag("--no-sign-repair", o->no_sign_repair,
                 "Keep the normals the Poisson function contradicts (by default they are flipped and Poisson solved again, up to 3 times)");
   sub->add_flag("--no-data-fit-retry", o->no_data_fit_retry,
-                "Keep the first mesh even when input points lie off it (farther than 1.5 average spacings or the surface-distance criterion; by "
-                "default their normals and those around them are flipped, Poisson solved and meshed again, and the new mesh is kept when it "
-                "leaves a quarter fewer points off)");
+                "Keep the first mesh even when input points lie off it (farther than 1.5 average spacings or the surface-distance criterion) "
+                "with normals against it (by default their normals and those around them are flipped, Poisson solved and meshed again, and "
+                "the new mesh is kept when it leaves a quarter fewer such points)");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
@@ -171,17 +171,21 @@ Command add_reconstruct(CLI::App& app) {
           {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
-    if (options.refit_off_data) {
-      report["data_fit"] = {{"points_off_mesh", result.off_data_points},
-                            {"max_distance", length_json(result.max_data_distance, diagonal)},
-                            {"max_distance_avg_spacings", result.average_spacing > 0 ? result.max_data_distance / result.average_spacing : 0.0},
-                            {"retry_ran", result.off_data_points_before_retry > 0},
-                            {"points_off_first_mesh", result.off_data_points_before_retry},
-                            {"retry_flipped_normals", result.off_data_flips}};
-      if (result.off_data_points > 0 && !common->quiet)
-        std::fprintf(stderr, "reconstruct: warning: %zu input points lie off the mesh (farther than 1.5 average spacings or the surface-distance criterion; farthest %.2f spacings): the surface may have closed a hole or a slot there\n",
-                     result.off_data_points, result.max_data_distance / result.average_spacing);
-    }
+    const double spacing = result.average_spacing > 0 ? result.average_spacing : 1.0;
+    report["data_fit"] = {{"off_distance", length_json(result.off_data_distance, diagonal)},
+                          {"off_distance_avg_spacings", result.off_data_distance / spacing},
+                          {"points_off_mesh", result.off_data_points},
+                          {"points_off_against_mesh", result.off_data_against},
+                          {"vertices_off_data", result.invented_vertices},
+                          {"retries", result.data_fit_retries},
+                          {"max_distance", length_json(result.max_data_distance, diagonal)},
+                          {"max_distance_avg_spacings", result.max_data_distance / spacing},
+                          {"retry_ran", result.off_data_points_before_retry > 0},
+                          {"points_off_first_mesh", result.off_data_points_before_retry},
+                          {"retry_flipped_normals", result.off_data_flips}};
+    if (result.off_data_points > 0 && !common->quiet)
+      std::fprintf(stderr, "reconstruct: warning: %zu input points lie more than %.2f average spacings from the mesh (farthest %.2f): the surface may have closed a hole or a slot there\n",
+                   result.off_data_points, result.off_data_distance / spacing, result.max_data_distance / spacing);
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);
     report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}, {"runaway", result.meshing.refinement_runaway}};
     if (result.meshing.refinement_runaway && !common->quiet)

@@ -75,10 +75,11 @@ struct ReconstructOptions {
   /// (beyond the thesis; not with check_input_normals = false).
   bool repair_normal_signs = true;
   /// After meshing, when input points lie farther than max(1.5 avg, the
-  /// surface-distance criterion) + 3 x the noise from the mesh, flip their
+  /// surface-distance criterion) + 3 x the noise from the mesh with normals
+  /// against its closest facets (from 10 points or 0.02%), flip their
   /// normals (and those around them), solve and mesh again, and keep the
-  /// mesh that leaves a quarter fewer points off (beyond the thesis; with
-  /// repair_normal_signs).
+  /// new mesh when it leaves a quarter fewer such points and no more points
+  /// off in all (beyond the thesis; with repair_normal_signs).
   bool refit_off_data = true;
   std::size_t max_facets = 5'000'000;
   std::uint32_t seed = 0;
@@ -115,10 +116,14 @@ struct ReconstructResult {
   std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect
   std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
-  /// Input points farther than max(1.5 avg, the surface-distance criterion)
-  /// + 3 x the noise from the output mesh: data the surface does not
-  /// represent (with refit_off_data).
+  /// Input points farther than off_data_distance = max(1.5 avg, the
+  /// surface-distance criterion) + 3 x the noise from the output mesh: data
+  /// the surface does not represent (measured with or without refit_off_data).
   std::size_t off_data_points = 0;
+  std::size_t off_data_against = 0;  ///< of those, the points whose normal points against the closest facet's
+  std::size_t invented_vertices = 0;  ///< mesh vertices farther than off_data_distance from every input point
+  std::size_t data_fit_retries = 0;   ///< retries run (0-2)
+  double off_data_distance = 0;
   std::size_t off_data_points_before_retry = 0;  ///< off the first mesh when a retry ran (0: none ran)
   std::size_t off_data_flips = 0;    ///< normals flipped by the kept retry (0: none kept)
   double max_data_distance = 0;      ///< largest distance of an input point to the output mesh

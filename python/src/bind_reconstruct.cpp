@@ -29,14 +29,16 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["flattened_vertices"] = r.flattened_vertices;
   counts["restricted_to_data"] = r.restricted;
   counts["boundary_edges"] = r.boundary_edges;
-  if (o.refit_off_data) {
-    py::dict fit;
-    fit["points_off_mesh"] = r.off_data_points;
-    fit["max_distance"] = r.max_data_distance;
-    fit["points_off_first_mesh"] = r.off_data_points_before_retry;
-    fit["retry_flipped_normals"] = r.off_data_flips;
-    report["data_fit"] = fit;
-  }
+  py::dict fit;
+  fit["off_distance"] = r.off_data_distance;
+  fit["points_off_mesh"] = r.off_data_points;
+  fit["points_off_against_mesh"] = r.off_data_against;
+  fit["vertices_off_data"] = r.invented_vertices;
+  fit["retries"] = r.data_fit_retries;
+  fit["max_distance"] = r.max_data_distance;
+  fit["points_off_first_mesh"] = r.off_data_points_before_retry;
+  fit["retry_flipped_normals"] = r.off_data_flips;
+  report["data_fit"] = fit;
   derived["average_spacing"] = r.average_spacing;
   derived["d_prime"] = r.d_prime;
   derived["facet_angle_deg"] = r.criteria.angle;

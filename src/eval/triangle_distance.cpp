@@ -40,6 +40,13 @@ double TriangleDistance::squared_distance(const Vec3& q) const { return impl_->t
 
 Vec3 TriangleDistance::closest_point(const Vec3& q) const { return from_cgal(impl_->tree.closest_point(to_cgal(q))); }
 
+Vec3 TriangleDistance::closest_normal(const Vec3& q) const {
+  const Triangle3& t = *impl_->tree.closest_point_and_primitive(to_cgal(q)).second;
+  const Vec3 n = from_cgal(CGAL::cross_product(t[1] - t[0], t[2] - t[0]));
+  const double length = norm(n);
+  return length > 0 ? (1.0 / length) * n : n;
+}
+
 std::vector<double> TriangleDistance::distances(const std::vector<Vec3>& queries) const {
   std::vector<double> d(queries.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {

@@ -17,6 +17,8 @@ class TriangleDistance {
   TriangleDistance& operator=(const TriangleDistance&) = delete;
   double squared_distance(const Vec3& q) const;
   Vec3 closest_point(const Vec3& q) const;
+  /// Unit normal (by the vertex order) of the triangle closest to q.
+  Vec3 closest_normal(const Vec3& q) const;
   /// Distances (not squared) of many points, in parallel.
   std::vector<double> distances(const std::vector<Vec3>& queries) const;
 

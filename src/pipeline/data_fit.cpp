@@ -4,19 +4,47 @@
 #include <cmath>
 
 #include "pointset/knn.h"
-#include "sharpmesh/eval.h"
+#include "eval/triangle_distance.h"
 
 namespace sharpmesh::detail {
 
-DataFit fit_to_data(const SurfaceMesh& mesh, const std::vector<Vec3>& points, double off_distance) {
+DataFit fit_to_data(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const std::vector<Vec3>& normals,
+                    double off_distance) {
   DataFit fit;
   if (mesh.faces.empty() || points.empty()) return fit;
-  const std::vector<double> d = distances_to_mesh(points, mesh);
+  const TriangleDistance tree(mesh);
+  const std::vector<double> d = tree.distances(points);
   for (std::size_t i = 0; i < d.size(); ++i) {
     fit.max_distance = std::max(fit.max_distance, d[i]);
-    if (d[i] > off_distance) fit.off.push_back(static_cast<std::uint32_t>(i));
+    if (!(d[i] > off_distance)) continue;
+    fit.off.push_back(static_cast<std::uint32_t>(i));
+    if (normals.size() == points.size() && dot(normals[i], tree.closest_normal(points[i])) < 0)
+      fit.off_and_against.push_back(static_cast<std::uint32_t>(i));
+  }
+  const KnnIndex index(points);
+  std::vector<std::uint32_t> ids;
+  std::vector<double> squared;
+  for (const Vec3& v : mesh.vertices) {
+    index.nearest(v, 1, ids, squared);
+    if (squared[0] > off_distance * off_distance) ++fit.invented_vertices;
   }
   return fit;
+}
+
+std::vector<std::uint32_t> within_reach(const std::vector<Vec3>& points, const std::vector<std::uint32_t>& ids,
+                                        const std::vector<std::uint32_t>& near, double reach) {
+  std::vector<std::uint32_t> out;
+  if (near.empty()) return out;
+  std::vector<Vec3> centres;
+  for (std::uint32_t i : near) centres.push_back(points[i]);
+  const KnnIndex index(centres);
+  std::vector<std::uint32_t> nearest;
+  std::vector<double> squared;
+  for (std::uint32_t i : ids) {
+    index.nearest(points[i], 1, nearest, squared);
+    if (squared[0] <= reach * reach) out.push_back(i);
+  }
+  return out;
 }
 
 std::size_t flip_around(PointSet& oriented, const std::vector<std::uint32_t>& ids, double radius) {
