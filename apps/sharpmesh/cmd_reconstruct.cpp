@@ -183,9 +183,10 @@ Command add_reconstruct(CLI::App& app) {
                           {"retry_ran", result.off_data_points_before_retry > 0},
                           {"points_off_first_mesh", result.off_data_points_before_retry},
                           {"retry_flipped_normals", result.off_data_flips}};
-    if (result.off_data_points > 0 && !common->quiet)
-      std::fprintf(stderr, "reconstruct: warning: %zu input points lie more than %.2f average spacings from the mesh (farthest %.2f): the surface may have closed a hole or a slot there\n",
-                   result.off_data_points, result.off_data_distance / spacing, result.max_data_distance / spacing);
+    // Points off a rounded edge agree with the mesh (PIF rounds every edge): only those against it are worth a warning.
+    if (result.off_data_against > 0 && !common->quiet)
+      std::fprintf(stderr, "reconstruct: warning: %zu input points lie more than %.2f average spacings from the mesh with normals against it (farthest point %.2f): the surface may have closed a hole or a slot there\n",
+                   result.off_data_against, result.off_data_distance / spacing, result.max_data_distance / spacing);
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);
     report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}, {"runaway", result.meshing.refinement_runaway}};
     if (result.meshing.refinement_runaway && !common->quiet)
