@@ -78,8 +78,8 @@ struct ReconstructOptions {
   /// surface-distance criterion) + 3 x the noise from the mesh with normals
   /// against its closest facets (from 10 points or 0.02%), flip their
   /// normals (and those around them), solve and mesh again, and keep the
-  /// new mesh when it leaves a quarter fewer such points and no more points
-  /// off in all (beyond the thesis; with repair_normal_signs).
+  /// new mesh when it leaves a quarter fewer such points, no more points
+  /// off in all and none farther (beyond the thesis; with repair_normal_signs).
   bool refit_off_data = true;
   std::size_t max_facets = 5'000'000;
   std::uint32_t seed = 0;
