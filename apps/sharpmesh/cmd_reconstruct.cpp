@@ -78,7 +78,7 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_flag("--no-data-fit-retry", o->no_data_fit_retry,
                 "Keep the first mesh even when input points lie off it (farther than 1.5 average spacings or the surface-distance criterion) "
                 "with normals against it (by default their normals and those around them are flipped, Poisson solved and meshed again, and "
-                "the new mesh is kept when it leaves a quarter fewer such points)");
+                "the new mesh is kept when it leaves a quarter fewer such points, no more off in all and none farther)");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
@@ -180,7 +180,6 @@ Command add_reconstruct(CLI::App& app) {
                           {"retries", result.data_fit_retries},
                           {"max_distance", length_json(result.max_data_distance, diagonal)},
                           {"max_distance_avg_spacings", result.max_data_distance / spacing},
-                          {"retry_ran", result.off_data_points_before_retry > 0},
                           {"points_off_first_mesh", result.off_data_points_before_retry},
                           {"retry_flipped_normals", result.off_data_flips}};
     // Points off a rounded edge agree with the mesh (PIF rounds every edge): only those against it are worth a warning.

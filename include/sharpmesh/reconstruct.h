@@ -124,7 +124,7 @@ struct ReconstructResult {
   std::size_t invented_vertices = 0;  ///< mesh vertices farther than off_data_distance from every input point
   std::size_t data_fit_retries = 0;   ///< retries run (0-2)
   double off_data_distance = 0;
-  std::size_t off_data_points_before_retry = 0;  ///< off the first mesh when a retry ran (0: none ran)
+  std::size_t off_data_points_before_retry = 0;  ///< off the first mesh (before any retry)
   std::size_t off_data_flips = 0;    ///< normals flipped by the kept retry (0: none kept)
   double max_data_distance = 0;      ///< largest distance of an input point to the output mesh
   std::vector<StageTiming> stages;
