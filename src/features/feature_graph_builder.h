@@ -64,8 +64,13 @@ struct TracedPolyline {
 /// Successor procedure from a seed in both directions, PCA smoothing, and
 /// lengthening with the extremity points (7.2.3). r_p = rho_k(p), at least
 /// `min_radius` (thinned clusters can be denser than the cloud's spacing).
-TracedPolyline trace_polyline(const EdgeCluster& cluster, const std::vector<Vec3>& points, const std::vector<Vec3>& directions,
-                              int successor_k, double min_radius);
+/// With `lateral_tolerance` > 0, only members within that distance of the
+/// line being traced join it, and members it leaves uncovered (at least
+/// `min_points` of them) are traced as further polylines; 0 traces one
+/// polyline per cluster, as the thesis does.
+std::vector<TracedPolyline> trace_polylines(const EdgeCluster& cluster, const std::vector<Vec3>& points,
+                                            const std::vector<Vec3>& directions, int successor_k, double min_radius,
+                                            double lateral_tolerance = 0, std::size_t min_points = 7);
 
 /// Junction recovery (7.2.3): merges nearby endpoints into darts, cusps and
 /// corners, closes loops, joins collinear pieces, splits polylines that pass
@@ -73,9 +78,10 @@ TracedPolyline trace_polyline(const EdgeCluster& cluster, const std::vector<Vec3
 /// `distance_to_data`, when given, checks each meeting point: ends whose
 /// lines meet farther than `max_offset` from the data stay apart, as darts.
 /// `max_radius` (0: none) caps r_junc, except between two collinear ends
-/// facing each other (one edge traced in two pieces).
+/// facing each other (one edge traced in two pieces). `lateral` (0: off)
+/// bounds how far each end line may pass from the junction (see group_meets).
 FeatureGraph connect_polylines(std::vector<TracedPolyline> polylines, double junction_factor,
                                const std::function<double(const Vec3&)>& distance_to_data = {}, double max_offset = 0,
-                               double max_radius = 0);
+                               double max_radius = 0, double lateral = 0);
 
 }  // namespace sharpmesh::detail

@@ -76,14 +76,23 @@ Vec3 meeting_point(const std::vector<const End*>& group) {
 // all of them pass within r/3 of their meeting point, which lies within r
 // of every end. Grouping ends by distance alone chains the ends of two
 // parallel edges a short edge apart (two corners of one small face) into
-// one junction far from both corners.
-bool group_meets(const std::vector<const End*>& group, double r) {
+// one junction far from both corners. Beyond that, with `lateral` > 0, each
+// line passes within max(lateral, tan 25 x the end's distance) of the
+// meeting point: the ends of two parallel edges 3-4 spacings apart (the
+// rims of a thin plate or of a low wall) lie side by side, and their lines
+// meet only halfway between them, in mid-air (oblong 50k: both rims of a
+// 3 mm plate snapped to one junction between them and the loops were lost;
+// couplingdown 50k: two corners 4 spacings apart merged).
+bool group_meets(const std::vector<const End*>& group, double r, double lateral) {
   if (group.size() < 2) return true;
   const Vec3 p = meeting_point(group);
+  const double tan_max = std::tan(25.0 * M_PI / 180.0);
   for (const End* e : group) {
     const Vec3 u = (1.0 / norm(e->outward)) * e->outward;
     const Vec3 offset = p - e->position;
-    if (norm(offset - dot(offset, u) * u) >= r / 3 || distance(p, e->position) >= r) return false;
+    const double along = dot(offset, u), off_line = norm(offset - along * u);
+    if (off_line >= r / 3 || distance(p, e->position) >= r) return false;
+    if (lateral > 0 && off_line > std::max(lateral, tan_max * std::abs(along))) return false;
   }
   return true;
 }
@@ -96,7 +105,8 @@ void set_end(TracedPolyline& line, bool back, const Vec3& p) {
 }  // namespace
 
 FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
-                               const std::function<double(const Vec3&)>& distance_to_data, double max_offset, double max_radius) {
+                               const std::function<double(const Vec3&)>& distance_to_data, double max_offset, double max_radius,
+                               double lateral) {
   const double cos_collinear = std::cos(150.0 * M_PI / 180.0);
   std::vector<End> ends;
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -155,7 +165,7 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
       }
     if (merged.size() == 2) r = pair_radius(*merged[0], *merged[1]);
     const bool loop = merged.size() == 2 && merged[0]->polyline == merged[1]->polyline;
-    if (!loop && !group_meets(merged, r)) continue;
+    if (!loop && !group_meets(merged, r, lateral)) continue;
     groups.unite(a, b);
     const std::size_t root = groups.find(a), other = root == ga ? gb : ga;
     std::vector<std::size_t> members_of_root = group_of[ga];
@@ -229,7 +239,15 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
   for (Node& node : nodes) {
     if (node.ends.size() != 2) continue;
     const End &a = ends[node.ends[0]], &b = ends[node.ends[1]];
-    if (a.polyline == b.polyline || dot(a.outward, b.outward) > cos_collinear) continue;
+    if (dot(a.outward, b.outward) > cos_collinear) continue;
+    if (a.polyline == b.polyline) {
+      // A loop traced in pieces, now joined at its other gaps: it closes here.
+      // (It used to be left with both ends on this node and dropped as a stub:
+      // spool 50k lost a rim circle traced in two pieces.)
+      lines[a.polyline].closed = true;
+      node.ends.clear();
+      continue;
+    }
     TracedPolyline& la = lines[a.polyline];
     TracedPolyline lb = lines[b.polyline];
     // Which end meets the node is read from the positions: earlier joins may have reversed a piece.
@@ -255,6 +273,9 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
   // A piece whose two ends were snapped to the same junction (grouped through
   // other ends) is a stub inside the junction's ball, not an edge.
   std::vector<TracedPolyline> kept;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+      if (lines[i].length() > 100) std::fprintf(stderr, "line %zu len %.1f dead %d closed %d front (%.2f %.2f %.2f) back (%.2f %.2f %.2f)\n", i, lines[i].length(), int(dead[i]), int(lines[i].closed),
+        lines[i].vertices.front()[0], lines[i].vertices.front()[1], lines[i].vertices.front()[2], lines[i].vertices.back()[0], lines[i].vertices.back()[1], lines[i].vertices.back()[2]);
   for (std::size_t i = 0; i < lines.size(); ++i)
     if (!dead[i] && lines[i].vertices.size() >= 2 && (lines[i].closed || lines[i].vertices.front() != lines[i].vertices.back()))
       kept.push_back(std::move(lines[i]));

@@ -345,3 +345,80 @@ TEST(FeatureGraph, PiecesOfOneEdgeJoinBeyondTheCappedRJunc) {
   }
   EXPECT_EQ(long_pieces, 1u);
 }
+
+// Two parallel edges 3 units apart (the rims of a wall three spacings
+// high, spacing 1 here) joined by the short edge between them form one
+// cluster. Each rim is traced as its own polyline on its line; the thesis's
+// single trace (lateral tolerance 0) averages them along the wall's middle.
+TEST(FeatureGraph, ParallelEdgesInOneClusterAreTracedApart) {
+  std::vector<Vec3> points, directions;
+  for (double z : {0.0, 3.0})
+    for (double x = 0; x <= 60; x += 0.5) {
+      points.push_back({x, 0, z});
+      directions.push_back({1, 0, 0});
+    }
+  for (double z = 0.5; z < 3; z += 0.5) {
+    points.push_back({60.5, 0, z});
+    directions.push_back({0, 0, 1});
+  }
+  detail::EdgeCluster cluster;
+  for (std::uint32_t i = 0; i < points.size(); ++i) cluster.members.push_back(i);
+
+  // Away from the short edge (x < 58), every vertex lies on a rim, and both
+  // rims are traced along their length.
+  const auto banded = detail::trace_polylines(cluster, points, directions, 5, 4, 1.5, 7);
+  std::size_t off_rims = 0, on_bottom = 0, on_top = 0;
+  for (const detail::TracedPolyline& line : banded)
+    for (const Vec3& v : line.vertices) {
+      if (v[0] >= 58) continue;
+      const bool bottom = std::abs(v[2]) < 0.2, top = std::abs(v[2] - 3) < 0.2;
+      off_rims += !bottom && !top;
+      on_bottom += bottom;
+      on_top += top;
+    }
+  EXPECT_EQ(off_rims, 0u);
+  EXPECT_GE(on_bottom, 12u);  // 58 units at a 4-unit step: 15 vertices
+  EXPECT_GE(on_top, 12u);
+
+  const auto thesis = detail::trace_polylines(cluster, points, directions, 5, 4, 0);
+  ASSERT_EQ(thesis.size(), 1u);
+  std::size_t in_the_middle = 0;
+  for (const Vec3& v : thesis[0].vertices) in_the_middle += v[0] < 58 && std::abs(v[2] - 1.5) < 1;
+  EXPECT_GT(in_the_middle, 3u);
+}
+
+// The ends of two parallel edges 3 units apart lie side by side: their lines
+// meet only halfway between them. With the lateral bound they stay apart (as
+// darts) while two perpendicular edges still meet at their corner; without
+// it the parallel ends became one junction in mid-air.
+TEST(FeatureGraph, EndsOfParallelEdgesSideBySideMeetNoJunction) {
+  const std::vector<detail::TracedPolyline> lines = {straight({-40, 0, 0}, {-2, 0, 0}), straight({-40, 0, 3}, {-2, 0, 3}),
+                                                     straight({100, -2, 0}, {100, -40, 0}), straight({102, 0, 0}, {140, 0, 0})};
+  const FeatureGraph bounded = detail::connect_polylines(lines, 5, {}, 0, 8, 1);
+  EXPECT_EQ(junctions_near(bounded, {-2, 0, 1.5}, 1, 2), 0u);
+  EXPECT_EQ(junctions_near(bounded, {-2, 0, 0}, 0.1, 1), 1u);
+  EXPECT_EQ(junctions_near(bounded, {-2, 0, 3}, 0.1, 1), 1u);
+  EXPECT_EQ(junctions_near(bounded, {100, 0, 0}, 0.5, 2), 1u);
+  const FeatureGraph unbounded = detail::connect_polylines(lines, 5, {}, 0, 8, 0);
+  EXPECT_EQ(junctions_near(unbounded, {-2, 0, 1.5}, 1, 2), 1u);
+}
+
+// A closed edge traced in two arcs: the two pieces join at one gap and the
+// loop closes at the other (it used to be dropped as a stub with both ends
+// on one junction: spool 50k lost a rim circle).
+TEST(FeatureGraph, LoopTracedInTwoPiecesCloses) {
+  auto arc = [](double from_deg, double to_deg) {
+    detail::TracedPolyline line;
+    for (double a = from_deg; a <= to_deg + 1e-9; a += 5) {
+      const double t = a * M_PI / 180;
+      line.vertices.push_back({40 * std::cos(t), 40 * std::sin(t), 0});
+      line.directions.push_back({-std::sin(t), std::cos(t), 0});
+    }
+    return line;
+  };
+  const FeatureGraph graph = detail::connect_polylines({arc(5, 170), arc(190, 350)}, 5, {}, 0, 8, 1);
+  ASSERT_EQ(graph.polylines.size(), 1u);
+  EXPECT_EQ(graph.polylines[0].front(), graph.polylines[0].back());
+  EXPECT_GT(graph.polylines[0].size(), 60u);
+  EXPECT_TRUE(graph.junctions.empty());
+}
