@@ -17,6 +17,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
   return {{"polylines", r.features.graph.polylines.size()},
           {"protecting_balls", m.protecting_balls},
           {"enlarged_balls", m.enlarged_balls},
+          {"protection_rounds_exhausted", m.protection_rounds_exhausted},
           {"max_gap", length_json(m.max_gap, diagonal)},
           {"protected_segments", m.protected_segments},
           {"represented_segments", m.represented_segments},
@@ -33,7 +34,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
-    bool no_features = false, fixed_balls = false, no_flattening = false, no_sign_repair = false, no_data_fit_retry = false, ascii = false;
+    bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_data_fit_retry = false, ascii = false;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
@@ -67,6 +68,9 @@ Command add_reconstruct(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--no-flattening", o->no_flattening,
                 "Keep the facets along protected edges on the Poisson surface (the thesis) instead of moving their third vertices onto the data's face planes");
+  sub->add_flag("--no-snapping", o->no_snapping,
+                "Leave the mesh where the refinement put it (the thesis) instead of moving vertices (2 average spacings at most) onto the "
+                "corners and data points it misses by more than 0.25 and 0.75 spacings (with features only)");
   sub->add_option("--normals", o->normals, "Normals when the input has none: auto (with features: cvcm; where the CVCM is isotropic, jet normals for the orientation, then crease-aware plane fits on clean clouds; else jet), cvcm (thesis 7.4 throughout), jet or pca")
       ->check(CLI::IsMember({"auto", "cvcm", "pca", "jet"}))
       ->capture_default_str();
@@ -95,6 +99,7 @@ Command add_reconstruct(CLI::App& app) {
     options.repair_normal_signs = !o->no_sign_repair;
     options.refit_off_data = !o->no_data_fit_retry;
     options.flatten_features = !o->no_flattening;
+    options.snap_vertices = !o->no_snapping;
     if (o->normals == "auto") {
       options.normal_source = NormalSource::Automatic;
     } else if (o->normals == "cvcm") {
@@ -153,7 +158,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"features", o->no_features ? "none" : o->features_file.empty() ? "extract" : o->features_file},
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
-          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"normals", o->normals}, {"normal_k", options.normals.k},
+          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"data_fit_retry", options.refit_off_data},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",
@@ -168,7 +173,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals}, {"sharpened_normals", result.sharpened_normals}, {"sign_repaired_normals", result.sign_repaired_normals},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
-          {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
+          {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     const double spacing = result.average_spacing > 0 ? result.average_spacing : 1.0;

@@ -93,6 +93,9 @@ struct ImplicitMeshingResult {
   std::vector<Polyline> feature_edges;
   std::size_t protecting_balls = 0;      ///< corner and edge balls
   std::size_t enlarged_balls = 0;        ///< balls grown to reach the surface
+  /// CGAL's protection stopped shrinking balls after its 29 rounds (balls of
+  /// two polylines that keep intersecting; left as they were).
+  bool protection_rounds_exhausted = false;
   std::size_t protected_segments = 0;    ///< segments between consecutive balls
   std::size_t represented_segments = 0;  ///< of those, edges of the output mesh
   double max_gap = 0;                    ///< largest polyline-to-surface distance measured at a ball
@@ -170,6 +173,32 @@ struct FlatteningOptions {
 std::size_t flatten_next_to_features(SurfaceMesh& mesh, const std::vector<Polyline>& feature_edges,
                                      const std::vector<Vec3>& points, const std::vector<Vec3>& normals,
                                      const FlatteningOptions& options);
+
+/// Snapping (beyond the thesis): mesh vertices moved onto the corners and
+/// data points the mesh misses. Distances in data units.
+struct SnappingOptions {
+  double max_move = 0;        ///< a vertex moves at most this far, onto a target at most this far off the mesh
+  double corner_present = 0;  ///< a corner this close to the mesh is in it
+  double data_present = 0;    ///< an input point this close to the mesh is on it
+  double support_radius = 0;  ///< an off point needs `min_support` other off points within this (no outlier pulls)
+  std::size_t min_support = 2;
+};
+
+struct SnappingStats {
+  std::size_t corners = 0;      ///< vertices moved onto corners
+  std::size_t data_points = 0;  ///< vertices moved onto input points the mesh missed
+  std::size_t undone = 0;       ///< moves undone because they made facets intersect
+};
+
+/// At acute corners and on the tops of walls thinner than two spacings the
+/// Poisson surface is rounded by more than the protecting balls there can
+/// reach, so the mesh misses the corner and the data by 1.5 spacings.
+/// Each corner (first) and each input point (then) farther than its
+/// `present` distance from the mesh, worst first, takes the nearest vertex
+/// not moved yet, within max_move, unless a facet of that vertex would turn
+/// over; moves that make facets intersect are undone.
+SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3>& corners, const std::vector<Vec3>& points,
+                                       const SnappingOptions& options);
 
 /// Open surfaces (beyond the thesis): cuts the facets between the boundary
 /// and the data (those with a vertex beyond the clip distance, connected to

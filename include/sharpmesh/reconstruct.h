@@ -63,6 +63,12 @@ struct ReconstructOptions {
   /// Beyond the thesis: the vertices that share a facet with a protected
   /// edge are moved onto the plane of the data's face (flatten_next_to_features).
   bool flatten_features = true;
+  /// Beyond the thesis: corners (junctions of two or more polylines) and,
+  /// on clean clouds, input points the mesh misses by more than 0.25 and 0.75
+  /// average spacings each take a mesh vertex near them, within 2
+  /// (snap_to_corners_and_data). With extracted features only: the PIF
+  /// baseline stays the thesis's.
+  bool snap_vertices = true;
   NormalSource normal_source = NormalSource::Automatic;
   NormalEstimationOptions normals;       ///< used when the input has no normals
   NormalOrientationOptions orientation;  ///< used when the input has no normals
@@ -114,6 +120,9 @@ struct ReconstructResult {
   std::size_t thin_points = 0;         ///< input points where the solid or a gap is thinner than the seed spacing / 2
   std::size_t flattened_vertices = 0;  ///< moved onto the face planes next to protected edges
   std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect
+  std::size_t snapped_corners = 0;     ///< mesh vertices moved onto corners the refinement missed
+  std::size_t snapped_to_data = 0;     ///< mesh vertices moved onto input points the mesh missed
+  std::size_t unsnapped_vertices = 0;  ///< snaps undone because they made facets intersect
   std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
   /// Input points farther than off_data_distance = max(1.5 avg, the

@@ -27,6 +27,9 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["data_seeds"] = r.meshing.data_seeds;
   counts["thin_points"] = r.thin_points;
   counts["flattened_vertices"] = r.flattened_vertices;
+  counts["snapped_corners"] = r.snapped_corners;
+  counts["snapped_to_data"] = r.snapped_to_data;
+  counts["unsnapped_vertices"] = r.unsnapped_vertices;
   counts["restricted_to_data"] = r.restricted;
   counts["boundary_edges"] = r.boundary_edges;
   py::dict fit;
@@ -52,6 +55,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
     protection["polylines"] = o.feature_mode == FeatureMode::Given ? o.given_features.size() : r.features.graph.polylines.size();
     protection["protecting_balls"] = m.protecting_balls;
     protection["enlarged_balls"] = m.enlarged_balls;
+    protection["protection_rounds_exhausted"] = m.protection_rounds_exhausted;
     protection["protected_segments"] = m.protected_segments;
     protection["represented_segments"] = m.represented_segments;
     protection["uncovered_gaps"] = m.uncovered.size();
@@ -69,7 +73,7 @@ void bind_reconstruct(py::module_& m) {
   const FeatureOptions f;
   m.def("reconstruct",
         [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
-           double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double seed_spacing, bool no_flattening, const std::string& normals, int normal_k, int orient_k,
+           double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double seed_spacing, bool no_flattening, bool no_snapping, const std::string& normals, int normal_k, int orient_k,
            bool recompute_normals, bool no_sign_repair, bool no_data_fit_retry, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
            double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k, bool fit_corner_points,
            const py::object& progress) {
@@ -86,6 +90,7 @@ void bind_reconstruct(py::module_& m) {
           o.poisson_thinning = poisson_thinning;
           o.data_seed_spacing = seed_spacing;
           o.flatten_features = !no_flattening;
+          o.snap_vertices = !no_snapping;
           if (normals == "auto") {
             o.normal_source = NormalSource::Automatic;
           } else if (normals == "cvcm") {
@@ -117,7 +122,7 @@ void bind_reconstruct(py::module_& m) {
         py::arg("no_features") = false, py::arg("features") = py::none(), py::arg("ball_radius") = d.ball_radius,
         py::arg("fixed_balls") = false, py::arg("trim") = d.trim_distance,
         py::arg("poisson_spacing") = d.poisson_spacing, py::arg("poisson_thinning") = d.poisson_thinning, py::arg("seed_spacing") = d.data_seed_spacing,
-        py::arg("no_flattening") = false, py::arg("normals") = "auto",
+        py::arg("no_flattening") = false, py::arg("no_snapping") = false, py::arg("normals") = "auto",
         py::arg("normal_k") = d.normals.k, py::arg("orient_k") = d.orientation.k, py::arg("recompute_normals") = false,
         py::arg("no_sign_repair") = false, py::arg("no_data_fit_retry") = false,
         py::arg("max_facets") = d.max_facets, py::arg("seed") = d.seed, py::arg("offset_radius") = f.offset_radius,
@@ -132,7 +137,8 @@ trim: remove facets farther than trim x d' + 2 avg from the data (0: keep the cl
 cells of poisson_spacing x d' (0: every point); poisson_thinning: leave out of Poisson the points closer than
 poisson_thinning x avg to an earlier one (0: none); seed_spacing: before refinement, one input point per cell of
 seed_spacing x d' projected onto the implicit surface as a vertex (0: none); no_flattening: keep the facets along protected
-edges on the Poisson surface; normals (when
+edges on the Poisson surface; no_snapping: leave the vertices where the refinement put them (by default up to 2 avg
+onto the corners and data points the mesh misses; report counts snapped_*); normals (when
 point_normals is None or recompute_normals): 'auto', 'cvcm', 'jet' or 'pca', over normal_k neighbours, oriented over
 orient_k; no_sign_repair: keep the normals the Poisson function contradicts (by default flipped and
 Poisson solved again, up to 3 times); no_data_fit_retry: keep the first mesh even when input points lie off it (by

@@ -24,6 +24,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <sstream>
+#include <iostream>
 #include <optional>
 #include <unordered_set>
 
@@ -531,7 +533,31 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
     const double minimal_radius = 0.05 * options.features.ball_radius;
     CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, sizing, minimal_radius,
                                                                                 max_vertices, &error);
-    protect(true);
+    {
+      // CGAL writes "features protection has reached maximal number of
+      // loops. It might result in a crash." to std::cerr when its 29 rounds
+      // of ball shrinking end with balls of two polylines still intersecting
+      // (polylines a spacing apart). Nothing crashes here (a failing
+      // refinement is retried without the close features): the fact goes
+      // to the report instead; any other CGAL message passes through.
+      std::ostringstream cgal_messages;
+      std::streambuf* const cerr_buffer = std::cerr.rdbuf(cgal_messages.rdbuf());
+      try {
+        protect(true);
+      } catch (...) {
+        std::cerr.rdbuf(cerr_buffer);
+        throw;
+      }
+      std::cerr.rdbuf(cerr_buffer);
+      std::string messages = cgal_messages.str();
+      const std::string::size_type warning = messages.find("Warning : features protection has reached maximal");
+      if (warning != std::string::npos) {
+        result.protection_rounds_exhausted = true;
+        const std::string::size_type end = messages.find("crash.", warning);
+        messages.erase(warning, end == std::string::npos ? std::string::npos : end + 7 - warning);
+      }
+      if (messages.find_first_not_of(" \n") != std::string::npos) std::cerr << messages;
+    }
     for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v) {
       if (c3t3.in_dimension(v) > 1) continue;
       ++result.protecting_balls;

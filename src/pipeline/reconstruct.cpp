@@ -17,6 +17,11 @@
 namespace sharpmesh {
 namespace {
 
+// Noise estimate (fraction of the average spacing) below which a cloud is
+// clean: CAD samples measure 0.001-0.021; 0.2% and 0.5% uniform noise on
+// fandisk 50k, 0.24 and 0.13 (after denoising).
+constexpr double kCleanNoise = 0.05;
+
 ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress);
 
 }  // namespace
@@ -473,6 +478,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     const double off_distance = std::max(1.5 * result.average_spacing, result.criteria.distance) + 3 * noise;
     result.off_data_distance = off_distance;
     detail::DataFit fit;
+    std::vector<Vec3> fit_normals = oriented.normals;  // those of the mesh kept
     {
       StageTimer timer(result.stages, "data fit");
       fit = detail::fit_to_data(result.mesh, input.points, oriented.normals, off_distance);  // oriented: the input's points
@@ -529,6 +535,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
             retry.off_data_flips = flips;
             best = std::move(retry);
             best_fit = std::move(refit);
+            fit_normals = std::move(flipped.normals);
           }
         } catch (const NumericalFailure&) {
           stages.insert(stages.end(), retry.stages.begin(), retry.stages.end());
@@ -542,6 +549,35 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
         fit = std::move(best_fit);
       }
       result.stages = std::move(stages);
+    }
+    // Beyond the thesis: vertices onto the corners and data points the mesh
+    // misses by more than the balls and the refinement could close (after the
+    // retry decision, which must see the misses). With extracted features
+    // only: the PIF baseline stays the thesis's. Onto data points only on
+    // clean clouds: a noisy point is no better than the mesh (fandisk and
+    // anchor 50k with 0.5% noise: mean distance 0.13 -> 0.19 U, 0.15 -> 0.19 U).
+    if (options.snap_vertices && options.feature_mode == FeatureMode::Extract && !result.mesh.faces.empty()) {
+      std::vector<Vec3> corners;
+      for (const Junction& j : result.features.graph.junctions)
+        if (j.degree >= 2) corners.push_back(j.position);
+      const bool clean = result.features.denoise_passes == 0 && noise < kCleanNoise * result.average_spacing;
+      SnappingOptions snapping;
+      // The rounding left is 1-1.5 spacings; a vertex moves at most 2.
+      snapping.max_move = 2 * result.average_spacing + 3 * noise;
+      snapping.corner_present = 0.25 * result.average_spacing + 3 * noise;
+      snapping.data_present = 0.75 * result.average_spacing + 3 * noise;
+      snapping.support_radius = 1.5 * result.average_spacing;
+      {
+        StageTimer timer(result.stages, "snapping");
+        const SnappingStats stats = snap_to_corners_and_data(result.mesh, corners, clean ? input.points : std::vector<Vec3>{}, snapping);
+        result.snapped_corners = stats.corners;
+        result.snapped_to_data = stats.data_points;
+        result.unsnapped_vertices = stats.undone;
+      }
+      if (result.snapped_corners + result.snapped_to_data > result.unsnapped_vertices) {
+        StageTimer timer(result.stages, "data fit after snapping");
+        fit = detail::fit_to_data(result.mesh, input.points, fit_normals, off_distance);
+      }
     }
     result.off_data_points = fit.off.size();
     result.off_data_against = fit.off_and_against.size();

@@ -91,7 +91,10 @@ r = json.load(open("r.json"))
 p = r["protection"]
 assert p["represented_fraction"] == 1.0 and p["uncovered_gaps"] == 0, p
 names = [s["name"] for s in r["stages"]]
-assert names == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "flattening", "trim", "data fit", "write"], names
+assert names[:15] == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "flattening", "trim", "data fit", "snapping"], names
+assert names[15:] in (["write"], ["data fit after snapping", "write"]), names
+assert r["counts"]["unsnapped_vertices"] <= r["counts"]["snapped_corners"] + r["counts"]["snapped_to_data"], r["counts"]
+assert r["parameters"]["snapping"] is True, r["parameters"]
 assert r["data_fit"]["points_off_first_mesh"] == 0 and r["data_fit"]["retries"] == 0, r["data_fit"]
 assert r["counts"]["normal_source"] == "cvcm", r["counts"]
 assert r["counts"]["flattened_vertices"] > 0 and r["counts"]["data_seeds"] >= 0, r["counts"]

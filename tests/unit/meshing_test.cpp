@@ -290,3 +290,60 @@ TEST(PoissonFunction, StartCellGridGivesCgalsValuesInAnyOrderAndFromThreads) {
   for (std::size_t i = 0; i < queries.size(); ++i) largest = std::max(largest, std::abs(got[i] - expected[i]));
   EXPECT_LT(largest, 1e-12);
 }
+
+// A corner vertex pushed 0.087 inside the cube (the rounding the protecting
+// balls could not close) goes back onto the corner; a corner farther than
+// max_move from the mesh takes no vertex.
+TEST(Snapping, MovesAVertexOntoAMissedCorner) {
+  SurfaceMesh mesh = test::cube_mesh(0.5);
+  std::size_t corner_vertex = 0;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (mesh.vertices[v] == Vec3{0.5, 0.5, 0.5}) corner_vertex = v;
+  mesh.vertices[corner_vertex] = {0.45, 0.45, 0.45};
+  SnappingOptions options;
+  options.max_move = 0.2;
+  options.corner_present = 0.01;
+  options.data_present = 0.03;
+  options.support_radius = 0.05;
+  const SnappingStats far = snap_to_corners_and_data(mesh, {{0.5, 0.5, 0.95}}, {}, options);
+  EXPECT_EQ(far.corners, 0u);
+  EXPECT_EQ(mesh.vertices[corner_vertex], (Vec3{0.45, 0.45, 0.45}));
+  const SnappingStats stats = snap_to_corners_and_data(mesh, {{0.5, 0.5, 0.5}, {-0.5, -0.5, -0.5}}, {}, options);
+  EXPECT_EQ(stats.corners, 1u);  // the other corner is in the mesh already
+  EXPECT_EQ(mesh.vertices[corner_vertex], (Vec3{0.5, 0.5, 0.5}));
+  EXPECT_FALSE(check_topology(mesh).self_intersecting);
+}
+
+// A dent of 0.1 in a sphere is pulled back onto the sampled data; a lone
+// point 0.08 outside the sphere (an outlier) pulls no vertex.
+TEST(Snapping, PullsTheMeshOntoSupportedDataButNotOntoALoneOutlier) {
+  SurfaceMesh mesh = test::sphere_mesh(3);
+  std::size_t pole = 0;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (mesh.vertices[v][2] > mesh.vertices[pole][2]) pole = v;
+  mesh.vertices[pole] = 0.9 * mesh.vertices[pole];
+  std::vector<Vec3> points = test::sample_with_normals(test::sphere_mesh(5), 20000, 1).points;
+  const Vec3 outlier{1.08, 0, 0};
+  points.push_back(outlier);
+  auto farthest_near_the_pole = [&] {
+    double worst = 0;
+    const std::vector<double> d = distances_to_mesh(points, mesh);
+    for (std::size_t i = 0; i + 1 < points.size(); ++i)
+      if (points[i][2] > 0.9) worst = std::max(worst, d[i]);
+    return worst;
+  };
+  const double before = farthest_near_the_pole();
+  EXPECT_GT(before, 0.07);
+  const double outlier_before = distances_to_mesh({outlier}, mesh)[0];
+  SnappingOptions options;
+  options.max_move = 0.15;
+  options.corner_present = 0.01;
+  options.data_present = 0.03;     // spacing about 0.025
+  options.support_radius = 0.04;
+  const SnappingStats stats = snap_to_corners_and_data(mesh, {}, points, options);
+  EXPECT_GE(stats.data_points, 1u);
+  EXPECT_LT(farthest_near_the_pole(), 0.5 * before);
+  EXPECT_NEAR(distances_to_mesh({outlier}, mesh)[0], outlier_before, 1e-12);
+  const TopologyReport topology = check_topology(mesh);
+  EXPECT_TRUE(topology.closed() && topology.manifold() && !topology.self_intersecting);
+}

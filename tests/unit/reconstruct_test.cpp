@@ -212,9 +212,14 @@ TEST(FeaturePreservingReconstruction, FandiskThirtyThousandPointsCloserThanPif) 
   const DistanceReport ours = compare_meshes(r.mesh, fandisk, d), theirs = compare_meshes(reconstruct(cloud, pif).mesh, fandisk, d);
   EXPECT_LT(ours.hausdorff, theirs.hausdorff);
   EXPECT_LT(ours.sharp_mean, 0.5 * theirs.sharp_mean);
-  ReconstructOptions thesis;
+  // The fitted corner points against the thesis's polylines, both without
+  // snapping (which moves more vertices for the thesis's polylines and
+  // evens them out: 1.89 and 1.88 U with it, 1.89 and 2.17 U without).
+  ReconstructOptions fitted, thesis;
+  fitted.snap_vertices = thesis.snap_vertices = false;
   thesis.features.fit_corner_points = false;
-  EXPECT_LT(ours.hausdorff, compare_meshes(reconstruct(cloud, thesis).mesh, fandisk, d).hausdorff);
+  EXPECT_LT(compare_meshes(reconstruct(cloud, fitted).mesh, fandisk, d).hausdorff,
+            compare_meshes(reconstruct(cloud, thesis).mesh, fandisk, d).hausdorff);
 }
 
 // CGAL's couplingdown at 50k points: chamfers 1.4 spacings wide, a thin
@@ -291,6 +296,29 @@ TEST(FeaturePreservingReconstruction, PointsOffTheMeshGetTheirNormalsFlippedAndA
   EXPECT_GT(r.off_data_flips, 0u);
   EXPECT_LE(4 * r.off_data_points, 3 * r.off_data_points_before_retry);
   expect_valid_and_close(r.mesh, part, 0.011);  // 2.2 U; 3.17 U without the retry
+}
+
+// couplingdown 50k (sampling seed 1) at delta 1.5: its two spike corners
+// (three faces, the top one a wedge of 70 degrees) and the top of a wall 1.3
+// spacings thick are rounded by Poisson beyond what their protecting balls
+// reach; the mesh vertices nearest to the corners and to the data points it
+// misses are moved onto them. Measured 1.37 U (diagonal / 200); 1.75 U
+// without snapping. CGAL's "might result in a crash" warning about its ball
+// shrinking goes to the report, not to stderr.
+TEST(FeaturePreservingReconstruction, CouplingdownCornersAndThinWallTopsAreSnappedOnto) {
+  const std::string path = test::data_file("meshes/couplingdown.off");
+  if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
+  const SurfaceMesh part = read_mesh(path);
+  ReconstructOptions options;
+  options.delta = 1.5;
+  testing::internal::CaptureStderr();
+  const ReconstructResult r = reconstruct(cli_sample(part, 50000, 1), options);
+  const std::string messages = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(messages.find("features protection"), std::string::npos) << messages;
+  EXPECT_GE(r.snapped_corners, 2u);
+  EXPECT_GE(r.snapped_to_data, 5u);
+  EXPECT_LT(r.unsnapped_vertices, r.snapped_corners + r.snapped_to_data);
+  expect_valid_and_close(r.mesh, part, 1.5 / 200);
 }
 
 // CGAL's blade at 50k points: a thin open plate. Poisson closes it; the
