@@ -180,7 +180,7 @@ struct SnappingOptions {
   double max_move = 0;        ///< a vertex moves at most this far, onto a target at most this far off the mesh
   double corner_present = 0;  ///< a corner this close to the mesh is in it
   double data_present = 0;    ///< an input point this close to the mesh is on it
-  double support_radius = 0;  ///< an off point needs `min_support` other off points within this (no outlier pulls)
+  double support_radius = 0;  ///< an off point needs `min_support` other points off by data_present / 2 within this (no outlier pulls)
   std::size_t min_support = 2;
 };
 
@@ -196,7 +196,8 @@ struct SnappingStats {
 /// Each corner (first) and each input point (then) farther than its
 /// `present` distance from the mesh, worst first, takes the nearest vertex
 /// not moved yet, within max_move, unless a facet of that vertex would turn
-/// over; moves that make facets intersect are undone.
+/// over or below 10 degrees; moves that make facets intersect are undone
+/// (all of them when eight rounds of undoing leave an intersection).
 SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3>& corners, const std::vector<Vec3>& points,
                                        const SnappingOptions& options);
 

@@ -87,10 +87,6 @@ std::size_t snap_vertices(VertexMover& mover, const detail::KnnIndex& original_v
   return count;
 }
 
-}  // namespace
-
-namespace {
-
 // The corners and the supported off points farther than their `present`
 // distance from the mesh as it is now.
 void find_targets(const SurfaceMesh& mesh, const std::vector<Vec3>& corners, const std::vector<Vec3>& points, const SnappingOptions& o,
@@ -141,15 +137,24 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
   }
   if (stats.corners + stats.data_points == 0) return stats;
   // A move can still push a facet through a neighbour: the moved vertices of
-  // intersecting facets go back, until none intersect or none of theirs moved.
-  for (int round = 0; round < 4 && stats.corners + stats.data_points > stats.undone; ++round) {
-    std::size_t restored = 0;
+  // intersecting facets go back, until none intersect or none of theirs
+  // moved; after eight rounds, every move goes back.
+  auto restore = [&](std::uint32_t v) {
+    if (mesh.vertices[v] == before[v]) return false;
+    mesh.vertices[v] = before[v];
+    ++stats.undone;
+    return true;
+  };
+  for (int round = 0;; ++round) {
+    bool restored = false;
     for (const auto& [a, b] : self_intersecting_faces(mesh))
       for (std::uint32_t f : {a, b})
-        for (std::uint32_t v : mesh.faces[f])
-          if (mesh.vertices[v] != before[v]) mesh.vertices[v] = before[v], ++restored;
-    if (restored == 0) break;
-    stats.undone += restored;
+        for (std::uint32_t v : mesh.faces[f]) restored = restore(v) || restored;
+    if (!restored) break;
+    if (round == 7) {
+      for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) restore(v);
+      break;
+    }
   }
   return stats;
 }
