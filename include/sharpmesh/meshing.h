@@ -174,6 +174,12 @@ std::size_t flatten_next_to_features(SurfaceMesh& mesh, const std::vector<Polyli
                                      const std::vector<Vec3>& points, const std::vector<Vec3>& normals,
                                      const FlatteningOptions& options);
 
+/// After vertex moves (flattening, snapping): the moved vertices (those
+/// that differ from `before`) of intersecting facets go back, until no
+/// facets intersect or none of theirs moved; if eight rounds still leave an
+/// intersection, every move goes back. Returns the number of vertices put back.
+std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before);
+
 /// Snapping (beyond the thesis): mesh vertices moved onto the corners and
 /// data points the mesh misses. Distances in data units.
 struct SnappingOptions {

@@ -115,6 +115,29 @@ void find_targets(const SurfaceMesh& mesh, const std::vector<Vec3>& corners, con
 
 }  // namespace
 
+std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before) {
+  if (before.size() != mesh.vertices.size()) throw InvalidArgument("undo_intersecting_moves: vertex counts differ");
+  std::size_t undone = 0;
+  auto restore = [&](std::uint32_t v) {
+    if (mesh.vertices[v] == before[v]) return false;
+    mesh.vertices[v] = before[v];
+    ++undone;
+    return true;
+  };
+  for (int round = 0;; ++round) {
+    bool restored = false;
+    for (const auto& [a, b] : self_intersecting_faces(mesh))
+      for (std::uint32_t f : {a, b})
+        for (std::uint32_t v : mesh.faces[f]) restored = restore(v) || restored;
+    if (!restored) break;
+    if (round == 7) {
+      for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) restore(v);
+      break;
+    }
+  }
+  return undone;
+}
+
 SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3>& corners, const std::vector<Vec3>& points,
                                        const SnappingOptions& o) {
   for (double d : {o.max_move, o.corner_present, o.data_present, o.support_radius})
@@ -136,26 +159,7 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
     if (corners_moved + data_moved == 0) break;
   }
   if (stats.corners + stats.data_points == 0) return stats;
-  // A move can still push a facet through a neighbour: the moved vertices of
-  // intersecting facets go back, until none intersect or none of theirs
-  // moved; after eight rounds, every move goes back.
-  auto restore = [&](std::uint32_t v) {
-    if (mesh.vertices[v] == before[v]) return false;
-    mesh.vertices[v] = before[v];
-    ++stats.undone;
-    return true;
-  };
-  for (int round = 0;; ++round) {
-    bool restored = false;
-    for (const auto& [a, b] : self_intersecting_faces(mesh))
-      for (std::uint32_t f : {a, b})
-        for (std::uint32_t v : mesh.faces[f]) restored = restore(v) || restored;
-    if (!restored) break;
-    if (round == 7) {
-      for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) restore(v);
-      break;
-    }
-  }
+  stats.undone = undo_intersecting_moves(mesh, before);
   return stats;
 }
 

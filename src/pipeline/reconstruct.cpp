@@ -434,15 +434,9 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
       out.flattened_vertices =
           flatten_next_to_features(out.mesh, out.meshing.feature_edges, normals.points, normals.normals, flattening);
       // A move can still push a facet through a neighbour (couplingdown 50k at
-      // delta 8 and 32 self-intersected): the moved vertices of intersecting
-      // facets go back, until none intersect or none of theirs moved.
-      for (int round = 0; round < 4 && out.flattened_vertices > 0; ++round) {
-        std::size_t restored = 0;
-        for (const auto& [a, b] : self_intersecting_faces(out.mesh))
-          for (std::uint32_t f : {a, b})
-            for (std::uint32_t v : out.mesh.faces[f])
-              if (out.mesh.vertices[v] != before[v]) out.mesh.vertices[v] = before[v], ++restored;
-        if (restored == 0) break;
+      // delta 8 and 32 self-intersected): such moves go back.
+      if (out.flattened_vertices > 0) {
+        const std::size_t restored = undo_intersecting_moves(out.mesh, before);
         out.flattened_vertices -= std::min(out.flattened_vertices, restored);
         out.unflattened_vertices += restored;
       }
