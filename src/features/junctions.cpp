@@ -274,9 +274,6 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
   // other ends) is a stub inside the junction's ball, not an edge.
   std::vector<TracedPolyline> kept;
   for (std::size_t i = 0; i < lines.size(); ++i)
-      if (lines[i].length() > 100) std::fprintf(stderr, "line %zu len %.1f dead %d closed %d front (%.2f %.2f %.2f) back (%.2f %.2f %.2f)\n", i, lines[i].length(), int(dead[i]), int(lines[i].closed),
-        lines[i].vertices.front()[0], lines[i].vertices.front()[1], lines[i].vertices.front()[2], lines[i].vertices.back()[0], lines[i].vertices.back()[1], lines[i].vertices.back()[2]);
-  for (std::size_t i = 0; i < lines.size(); ++i)
     if (!dead[i] && lines[i].vertices.size() >= 2 && (lines[i].closed || lines[i].vertices.front() != lines[i].vertices.back()))
       kept.push_back(std::move(lines[i]));
 

@@ -472,7 +472,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     const double off_distance = std::max(1.5 * result.average_spacing, result.criteria.distance) + 3 * noise;
     result.off_data_distance = off_distance;
     detail::DataFit fit;
-    std::vector<Vec3> fit_normals = oriented.normals;  // those of the mesh kept
+    std::vector<Vec3> retry_normals;  // the normals of the mesh kept, when a retry's
     {
       StageTimer timer(result.stages, "data fit");
       fit = detail::fit_to_data(result.mesh, input.points, oriented.normals, off_distance);  // oriented: the input's points
@@ -529,7 +529,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
             retry.off_data_flips = flips;
             best = std::move(retry);
             best_fit = std::move(refit);
-            fit_normals = std::move(flipped.normals);
+            retry_normals = std::move(flipped.normals);
           }
         } catch (const NumericalFailure&) {
           stages.insert(stages.end(), retry.stages.begin(), retry.stages.end());
@@ -570,7 +570,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
       }
       if (result.snapped_corners + result.snapped_to_data > result.unsnapped_vertices) {
         StageTimer timer(result.stages, "data fit after snapping");
-        fit = detail::fit_to_data(result.mesh, input.points, fit_normals, off_distance);
+        fit = detail::fit_to_data(result.mesh, input.points, retry_normals.empty() ? oriented.normals : retry_normals, off_distance);
       }
     }
     result.off_data_points = fit.off.size();

@@ -246,7 +246,11 @@ assert [s["name"] for s in r["stages"]] == ["detection", "clustering", "polyline
 assert r["counts"]["edge_points"] > 0 and r["counts"]["points"] == 20000, r["counts"]
 PY
     $bin eval-features p.polylines.txt --reference "$data/meshes/cube.off" --json f.json -q || fail "eval-features failed"
-    python3 -c "import json; e=json.load(open('f.json'))['evaluation']; assert 0 <= e['recall'] <= 1 and e['truth_corners'] == 8, e" || fail "bad eval-features" ;;
+    python3 -c "import json; e=json.load(open('f.json'))['evaluation']; assert 0 <= e['recall'] <= 1 and e['truth_corners'] == 8, e" || fail "bad eval-features"
+    # Quiet means quiet, on a model in millimetres too (polylines 160 long).
+    $bin sample "$data/meshes/oblong.off" -n 20000 --seed 1 -o o.ply -q || fail "sample failed"
+    $bin features o.ply -o o.txt -q 2> err.txt || fail "features on oblong failed"
+    [[ ! -s err.txt ]] || fail "features -q wrote to stderr: $(head -c 300 err.txt)" ;;
   features-bad-input)
     printf '0 0 0\n1 0 0\n0 1 0\n' > t.xyz
     expect_error 1 "at least" "p.txt" $bin features t.xyz -o p.txt
