@@ -63,6 +63,9 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_option("--poisson-thinning", o->reconstruct.poisson_thinning,
                   "Leave out of Poisson the points closer than F x avg to an earlier point (0: keep all); near-coincident pairs cost most of Poisson's time")
       ->capture_default_str();
+  sub->add_option("--poisson-screening", o->reconstruct.poisson_screening,
+                  "Pull of Poisson's function towards the points, relative to its smoothness, with lengths in average spacings: the same surface in any unit (0: CGAL's own weight, which depends on the unit)")
+      ->capture_default_str();
   sub->add_option("--seed-spacing", o->reconstruct.data_seed_spacing,
                   "Before refinement, project one input point per cell of F x d' onto the implicit surface as a mesh vertex, so parts thinner than the facets are not stepped over (0: none)")
       ->capture_default_str();
@@ -158,7 +161,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"features", o->no_features ? "none" : o->features_file.empty() ? "extract" : o->features_file},
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
-          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
+          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"poisson_screening", options.poisson_screening}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"data_fit_retry", options.refit_off_data},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",

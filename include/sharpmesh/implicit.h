@@ -29,10 +29,12 @@ Vec3 implicit_gradient(const ImplicitSurface& surface, const Vec3& p, double h);
 /// Closest point of the zero level set found by Newton steps along the
 /// gradient (each step at most `max_step` long), starting from p. Returns
 /// false when no root is reached within `max_distance` of p; `h` is the
-/// finite-difference step. Used to measure the gap between sharp-feature
-/// polylines and the implicit surface (thesis 7.5, Fig. 7.18).
+/// finite-difference step. Where Newton stalls, the nearest sign change
+/// within `stalled_search` along 26 directions is taken instead (0: none).
+/// Used to measure the gap between sharp-feature polylines and the implicit
+/// surface (thesis 7.5, Fig. 7.18).
 bool project_onto_surface(const ImplicitSurface& surface, const Vec3& p, double max_step, double max_distance, double h,
-                          Vec3& projection);
+                          Vec3& projection, double stalled_search = 0);
 
 /// The surface restricted to the neighbourhood of the data, where it needs
 /// it: when its zero set reaches farther than `max_distance` from every point
@@ -57,7 +59,17 @@ struct PoissonOptions {
   /// instead of CGAL's walk from the last cell found. Same values; false is
   /// the baseline of bench/implicit_evaluation.
   bool start_cell_grid = true;
-  void check() const {}
+  /// Weight of CGAL's pull of the function towards 0 at the samples (its
+  /// fixed lambda = 0.1 on the diagonal), relative to the Laplacian, in units
+  /// where the average spacing is 1. CGAL's Laplacian entries scale with the
+  /// length unit and lambda does not, so the same cloud in millimetres and in
+  /// metres gave different surfaces (couplingdown 50k: 2.15 U scaled by 100,
+  /// 1.58 U as published, 1.33 U scaled by 0.01); the samples are therefore
+  /// scaled so this weight holds whatever the unit. 0 leaves them unscaled.
+  double screening = 12;
+  /// Average spacing of the samples, for `screening`; 0 = measured here (k = 6).
+  double average_spacing = 0;
+  void check() const;
 };
 /// How well the solved function fits the normals.
 struct PoissonDiagnostics {

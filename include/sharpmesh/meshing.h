@@ -188,6 +188,11 @@ struct SnappingOptions {
   double data_present = 0;    ///< an input point this close to the mesh is on it
   double support_radius = 0;  ///< an off point needs `min_support` other points off by data_present / 2 within this (no outlier pulls)
   std::size_t min_support = 2;
+  /// The input points are targets too (clean clouds); either way they judge
+  /// the corner moves: one that takes the vertex's facets farther from the
+  /// points within support_radius of them (distances capped at max_move) is
+  /// refused, as from a flat face down to a junction misplaced below it.
+  bool points_are_targets = true;
 };
 
 struct SnappingStats {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sharpmesh/features.h"
+#include "sharpmesh/implicit.h"
 #include "sharpmesh/meshing.h"
 #include "sharpmesh/pointset.h"
 #include "sharpmesh/progress.h"
@@ -54,6 +55,10 @@ struct ReconstructOptions {
   /// are left out (0: none). Beyond the thesis: near-coincident pairs of a
   /// random sampling cost CGAL's Poisson most of its Steiner points.
   double poisson_thinning = 0.4;
+  /// Poisson's pull of the function towards the samples, relative to its
+  /// Laplacian, with lengths in average spacings (PoissonOptions::screening):
+  /// the same surface whatever the cloud's unit. 0: CGAL's, unit-dependent.
+  double poisson_screening = PoissonOptions{}.screening;
   /// Before refinement, one input point per cell of data_seed_spacing x d'
   /// is projected onto the implicit surface and inserted, and more where the
   /// solid or a gap is thinner than half that (0: none). Beyond the thesis:

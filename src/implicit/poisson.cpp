@@ -28,6 +28,9 @@ static_assert(std::is_same_v<Triangulation, detail::PoissonTriangulation>,
               "the deterministic refinement queue (poisson_refinement_order.h) must match CGAL's Poisson triangulation");
 using Cell = Triangulation::Cell;
 using Cell_handle = Triangulation::Cell_handle;
+/// The weight Poisson_reconstruction_function::compute_implicit_function adds
+/// to the diagonal at the input vertices (its `lambda`, fixed in CGAL 5.5).
+constexpr double kCgalPoissonLambda = 0.1;
 
 /// Evaluates CGAL's Poisson function (its operator()'s piecewise-linear
 /// interpolation and formula, so the same value whenever the walk ends in the
@@ -118,11 +121,17 @@ class StartCellGrid {
 
 class PoissonSurface final : public ImplicitSurface {
  public:
-  PoissonSurface(std::vector<PointWithNormal> samples, bool start_cell_grid)
+  /// The function is solved on the samples scaled by `scale` (see
+  /// PoissonOptions::screening) and evaluated at scale * p.
+  PoissonSurface(std::vector<PointWithNormal> samples, double scale, bool start_cell_grid)
       : start_cell_grid_(start_cell_grid),
+        scale_(scale),
         samples_(std::move(samples)),
-        function_(samples_.begin(), samples_.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
-                  CGAL::Second_of_pair_property_map<PointWithNormal>()) {}
+        scaled_(scaled_points(samples_, scale)),
+        function_(scaled_.begin(), scaled_.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
+                  CGAL::Second_of_pair_property_map<PointWithNormal>()) {
+    scaled_ = {};  // CGAL keeps its own copy in the triangulation
+  }
 
   bool solve() {
     // CGAL's default runs conjugate gradients to machine precision (387
@@ -137,7 +146,7 @@ class PoissonSurface final : public ImplicitSurface {
   }
   const std::vector<PointWithNormal>& samples() const { return samples_; }
   double value(const Vec3& p) const override {
-    const detail::Point3 q = detail::to_cgal(p);
+    const detail::Point3 q = detail::to_cgal(scale_ * p);
     return sign_ * (start_cell_grid_ ? start_cells_.value(function_.tr(), q) : function_(q));
   }
   /// CGAL orients the function by an inner point it finds itself; on an open
@@ -161,14 +170,24 @@ class PoissonSurface final : public ImplicitSurface {
     sign_ = -sign_;
     return false;
   }
-  Vec3 bounding_center() const override { return detail::from_cgal(function_.bounding_sphere().center()); }
-  double bounding_radius() const override { return std::sqrt(function_.bounding_sphere().squared_radius()); }
-  Vec3 inside_point() const override { return has_inside_ ? inside_ : detail::from_cgal(function_.get_inner_point()); }
+  Vec3 bounding_center() const override { return (1 / scale_) * detail::from_cgal(function_.bounding_sphere().center()); }
+  double bounding_radius() const override { return std::sqrt(function_.bounding_sphere().squared_radius()) / scale_; }
+  Vec3 inside_point() const override { return has_inside_ ? inside_ : (1 / scale_) * detail::from_cgal(function_.get_inner_point()); }
   std::size_t sample_count() const override { return samples_.size(); }
 
  private:
+  static std::vector<PointWithNormal> scaled_points(const std::vector<PointWithNormal>& samples, double scale) {
+    std::vector<PointWithNormal> scaled;
+    scaled.reserve(samples.size());
+    for (const PointWithNormal& s : samples)
+      scaled.emplace_back(detail::Point3(scale * s.first.x(), scale * s.first.y(), scale * s.first.z()), s.second);
+    return scaled;
+  }
+
   bool start_cell_grid_;
+  double scale_;
   std::vector<PointWithNormal> samples_;
+  std::vector<PointWithNormal> scaled_;
   Function function_;
   StartCellGrid start_cells_;
   double sign_ = 1;
@@ -221,6 +240,13 @@ std::vector<PointWithNormal> jittered(std::vector<PointWithNormal> samples, doub
 
 }  // namespace
 
+void PoissonOptions::check() const {
+  if (!(screening >= 0 && screening <= 1e6))
+    throw InvalidArgument("Poisson screening weight must be in [0, 1e6] (got " + format_number(screening) + ")");
+  if (!(average_spacing >= 0 && std::isfinite(average_spacing)))
+    throw InvalidArgument("Poisson average spacing must be finite and non-negative (got " + format_number(average_spacing) + ")");
+}
+
 std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const PoissonOptions& options, const Progress& progress,
                                                  PoissonDiagnostics* diagnostics) {
   options.check();
@@ -237,7 +263,12 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   if (all_coplanar(samples))  // CGAL's Poisson needs a 3D Delaunay triangulation
     throw InvalidInput("Poisson reconstruction: all points lie on one plane (or line); a surface cannot be reconstructed from a flat cloud");
   report_progress(progress, "poisson", 0.0);
-  auto surface = std::make_unique<PoissonSurface>(samples, options.start_cell_grid);
+  double scale = 1;
+  if (options.screening > 0) {
+    const double spacing = options.average_spacing > 0 ? options.average_spacing : average_spacing(points);
+    if (spacing > 0) scale = kCgalPoissonLambda / (options.screening * spacing);
+  }
+  auto surface = std::make_unique<PoissonSurface>(samples, scale, options.start_cell_grid);
   if (!surface->solve()) throw NumericalFailure("Poisson reconstruction: the linear solver failed");
   // Samples on an exact sphere (1,000 points of a Fibonacci sphere fail,
   // 1,500 do not) make CGAL's Delaunay refinement of the Poisson domain
@@ -257,7 +288,7 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   double agreement = agreement_of(*surface);
   for (double jitter : {1e-4, 1e-3}) {
     if (agreement >= 0.75) break;
-    auto retry = std::make_unique<PoissonSurface>(jittered(samples, jitter * surface->bounding_radius()), options.start_cell_grid);
+    auto retry = std::make_unique<PoissonSurface>(jittered(samples, jitter * surface->bounding_radius()), scale, options.start_cell_grid);
     if (!retry->solve()) continue;
     const double retry_agreement = agreement_of(*retry);
     if (retry_agreement > agreement) std::tie(surface, agreement) = std::make_pair(std::move(retry), retry_agreement);

@@ -9,8 +9,14 @@
 // and the data points that the mesh misses.
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+
+#include <CGAL/squared_distance_3.h>
 
 #include "eval/triangle_distance.h"
+#include "pointset/cgal_bridge.h"
 #include "pointset/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
@@ -36,7 +42,8 @@ class VertexMover {
     for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
       for (std::uint32_t v : mesh.faces[f]) faces_of_[v].push_back(f);
   }
-  bool try_move(std::uint32_t v, const Vec3& to) {
+  /// `accept` (may be empty) has the last word on a move that passes the facet checks.
+  bool try_move(std::uint32_t v, const Vec3& to, const std::function<bool(std::uint32_t, const Vec3&)>& accept = {}) {
     if (moved_[v] || faces_of_[v].empty()) return false;
     for (std::uint32_t f : faces_of_[v]) {
       const Triangle& t = mesh_.faces[f];
@@ -44,6 +51,7 @@ class VertexMover {
       const double angle_after = min_angle(t, v, to);
       if (angle_after < kMinAngle && angle_after < min_angle(t, v, mesh_.vertices[v])) return false;
     }
+    if (accept && !accept(v, to)) return false;
     mesh_.vertices[v] = to;
     moved_[v] = 1;
     return true;
@@ -64,6 +72,27 @@ class VertexMover {
     }
     return smallest;
   }
+
+
+ public:
+  const SurfaceMesh& mesh() const { return mesh_; }
+  const std::vector<std::uint32_t>& faces_of(std::uint32_t v) const { return faces_of_[v]; }
+  /// Distance from q to the facets of v, with v at p.
+  double distance_to_ring(std::uint32_t v, const Vec3& p, const Vec3& q) const {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::uint32_t f : faces_of_[v]) {
+      const Triangle& t = mesh_.faces[f];
+      const detail::Kernel::Triangle_3 triangle(detail::to_cgal(at(t, 0, v, p)), detail::to_cgal(at(t, 1, v, p)), detail::to_cgal(at(t, 2, v, p)));
+      if (!triangle.is_degenerate()) {
+        best = std::min(best, std::sqrt(CGAL::squared_distance(detail::to_cgal(q), triangle)));
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) best = std::min(best, norm(q - at(t, k, v, p)));
+    }
+    return best;
+  }
+
+ private:
   SurfaceMesh& mesh_;
   std::vector<std::vector<std::uint32_t>> faces_of_;
   std::vector<char> moved_;
@@ -71,7 +100,8 @@ class VertexMover {
 
 // Worst first, each target takes the nearest of its four nearest vertices
 // (positions before any move) that can move onto it.
-std::size_t snap_vertices(VertexMover& mover, const detail::KnnIndex& original_vertices, std::vector<Target> targets, double max_move) {
+std::size_t snap_vertices(VertexMover& mover, const detail::KnnIndex& original_vertices, std::vector<Target> targets, double max_move,
+                          const std::function<bool(std::uint32_t, const Vec3&)>& accept = {}) {
   std::stable_sort(targets.begin(), targets.end(), [](const Target& a, const Target& b) { return a.offset > b.offset; });
   std::vector<std::uint32_t> ids;
   std::vector<double> d2;
@@ -79,7 +109,7 @@ std::size_t snap_vertices(VertexMover& mover, const detail::KnnIndex& original_v
   for (const Target& target : targets) {
     original_vertices.nearest(target.position, 4, ids, d2);
     for (std::size_t k = 0; k < ids.size() && std::sqrt(d2[k]) <= max_move; ++k)
-      if (mover.try_move(ids[k], target.position)) {
+      if (mover.try_move(ids[k], target.position, accept)) {
         ++count;
         break;
       }
@@ -97,6 +127,7 @@ void find_targets(const SurfaceMesh& mesh, const std::vector<Vec3>& corners, con
   const std::vector<double> corner_offsets = surface.distances(corners);
   for (std::size_t c = 0; c < corners.size(); ++c)
     if (corner_offsets[c] > o.corner_present && corner_offsets[c] <= o.max_move) corner_targets.push_back({corners[c], corner_offsets[c]});
+  if (!o.points_are_targets) return;
   const std::vector<double> offsets = surface.distances(points);
   std::vector<Vec3> off_points;
   std::vector<double> off_offsets;
@@ -147,12 +178,33 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
   const std::vector<Vec3> before = mesh.vertices;
   const detail::KnnIndex original_vertices(before);
   VertexMover mover(mesh);
+  // A corner move must not take v's facets farther from the data around them.
+  std::unique_ptr<detail::KnnIndex> data;
+  if (!points.empty()) data = std::make_unique<detail::KnnIndex>(points);
+  std::vector<std::uint32_t> near, near_target;
+  auto fits_data_no_worse = [&](std::uint32_t v, const Vec3& to) {
+    if (!data) return true;
+    const Vec3 from = mover.mesh().vertices[v];
+    double reach = 0;  // of v's facets from v, before and after
+    for (std::uint32_t f : mover.faces_of(v))
+      for (std::uint32_t w : mover.mesh().faces[f])
+        if (w != v) reach = std::max({reach, norm(mover.mesh().vertices[w] - from), norm(mover.mesh().vertices[w] - to)});
+    data->within(from, reach + o.support_radius, near);
+    data->within(to, reach + o.support_radius, near_target);
+    near.insert(near.end(), near_target.begin(), near_target.end());
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    double change = 0;
+    for (std::uint32_t i : near)
+      change += std::min(mover.distance_to_ring(v, to, points[i]), o.max_move) - std::min(mover.distance_to_ring(v, from, points[i]), o.max_move);
+    return change <= 0;
+  };
   // Three passes: on a thin wall a point's nearest vertices can all go to
   // worse points first, and the mesh they leave is measured again.
   std::vector<Target> corner_targets, data_targets;
   for (int pass = 0; pass < 3; ++pass) {
     find_targets(mesh, corners, points, o, corner_targets, data_targets);
-    const std::size_t corners_moved = snap_vertices(mover, original_vertices, std::move(corner_targets), o.max_move);
+    const std::size_t corners_moved = snap_vertices(mover, original_vertices, std::move(corner_targets), o.max_move, fits_data_no_worse);
     const std::size_t data_moved = snap_vertices(mover, original_vertices, std::move(data_targets), o.max_move);
     stats.corners += corners_moved;
     stats.data_points += data_moved;

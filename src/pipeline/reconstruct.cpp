@@ -38,6 +38,8 @@ void ReconstructOptions::check(std::size_t n) const {
     throw InvalidArgument("Poisson sample spacing is a fraction of d' in [0, 4] (got " + format_number(poisson_spacing) + ")");
   if (!(poisson_thinning >= 0 && poisson_thinning <= 2))
     throw InvalidArgument("Poisson thinning distance is a fraction of the average spacing in [0, 2] (got " + format_number(poisson_thinning) + ")");
+  if (!(poisson_screening >= 0 && poisson_screening <= 1e6))
+    throw InvalidArgument("Poisson screening weight must be in [0, 1e6] (got " + format_number(poisson_screening) + ")");
   if (!(data_seed_spacing == 0 || (data_seed_spacing >= 0.5 && data_seed_spacing <= 100)))
     throw InvalidArgument("data seed spacing is 0 or a fraction of d' in [0.5, 100] (got " + format_number(data_seed_spacing) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
@@ -336,11 +338,14 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     // Poisson from 31 to 12 s (CGAL's refinement adds a Steiner point for
     // each short Delaunay edge) with the same Hausdorff and mean error.
     const bool thin = options.poisson_thinning > 0, grid = options.poisson_spacing > 0;
-    if (!thin && !grid) return poisson_surface(oriented, PoissonOptions{}, progress, &diagnostics);
+    PoissonOptions poisson;
+    poisson.screening = options.poisson_screening;
+    poisson.average_spacing = result.average_spacing;
+    if (!thin && !grid) return poisson_surface(oriented, poisson, progress, &diagnostics);
     PointSet samples{oriented.points, oriented.normals, {}};
     if (grid) grid_simplify(samples, options.poisson_spacing * result.d_prime);
     if (thin) thin_close_points(samples, options.poisson_thinning * result.average_spacing);
-    return poisson_surface(samples, PoissonOptions{}, progress, &diagnostics);
+    return poisson_surface(samples, poisson, progress, &diagnostics);
   };
   const std::string estimated_name = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
   result.normal_source = !needs_normals ? (input_normals == InputNormals::Reoriented ? "input (re-oriented)" : "input")
@@ -561,9 +566,10 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
       snapping.corner_present = 0.25 * result.average_spacing + 3 * noise;
       snapping.data_present = 0.75 * result.average_spacing + 3 * noise;
       snapping.support_radius = 1.5 * result.average_spacing;
+      snapping.points_are_targets = clean;
       {
         StageTimer timer(result.stages, "snapping");
-        const SnappingStats stats = snap_to_corners_and_data(result.mesh, corners, clean ? input.points : std::vector<Vec3>{}, snapping);
+        const SnappingStats stats = snap_to_corners_and_data(result.mesh, corners, input.points, snapping);
         result.snapped_corners = stats.corners;
         result.snapped_to_data = stats.data_points;
         result.unsnapped_vertices = stats.undone;

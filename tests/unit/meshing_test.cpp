@@ -50,6 +50,16 @@ class KinkedNearZero : public ImplicitSurface {
   Vec3 inside_point() const override { return {0, 0, 0}; }
 };
 
+/// Negative beyond x = 0.3, positive elsewhere: a flat function (zero
+/// gradient) whose zero set Newton cannot find from x = 0.
+class StepAtX : public ImplicitSurface {
+ public:
+  double value(const Vec3& p) const override { return p[0] > 0.3 ? -1 : 1; }
+  Vec3 bounding_center() const override { return {0, 0, 0}; }
+  double bounding_radius() const override { return 1; }
+  Vec3 inside_point() const override { return {1, 0, 0}; }
+};
+
 double farthest_x(const SurfaceMesh& mesh) {
   double x = -1e9;
   for (const Vec3& v : mesh.vertices) x = std::max(x, v[0]);
@@ -70,6 +80,21 @@ TEST(Projection, NewtonBouncingNextToTheZeroSetStillProjects) {
   EXPECT_NEAR(q[0], 0.1, 1e-12);
   EXPECT_FALSE(project_onto_surface(surface, {0.1, 0.2, 0.3}, 0.1, 1.0, 1e-3, q));  // tolerance 1e-3 < 2e-3
   EXPECT_FALSE(project_onto_surface(surface, {0.1, 0.2, 0.3}, 0.5, 0.2, 1e-3, q));  // beyond max_distance
+}
+
+// Where Newton stalls (here a zero gradient), the nearest sign change along
+// 26 directions on growing spheres gives the surface point when a search
+// radius is given; none within it (or within max_distance) is a failure.
+TEST(Projection, StalledNewtonFallsBackToTheNearestSignChange) {
+  const StepAtX surface;
+  Vec3 q;
+  EXPECT_FALSE(project_onto_surface(surface, {0, 0.2, 0}, 0.1, 1.0, 1e-4, q));  // no search by default
+  ASSERT_TRUE(project_onto_surface(surface, {0, 0.2, 0}, 0.1, 1.0, 1e-4, q, 0.5));
+  EXPECT_NEAR(q[0], 0.3, 1e-4);
+  EXPECT_NEAR(q[1], 0.2, 1e-12);  // straight along +x, the nearest of the 26
+  EXPECT_NEAR(q[2], 0.0, 1e-12);
+  EXPECT_FALSE(project_onto_surface(surface, {0, 0.2, 0}, 0.1, 0.25, 1e-4, q, 0.5));
+  EXPECT_FALSE(project_onto_surface(surface, {0, 0.2, 0}, 0.1, 1.0, 1e-4, q, 0.2));
 }
 
 // A fin of a thirteenth of the facet size: the refinement steps over it (a
@@ -253,6 +278,34 @@ TEST(FeatureSeparation, DropsTheShorterOfTwoCloseCurvesAndSelfCloseTraces) {
   EXPECT_DOUBLE_EQ(folded[0][0][0], 30.0);
 }
 
+// CGAL's Poisson adds a fixed weight to its Laplacian, whose entries scale
+// with the unit: the same cube in metres and in millimetres (x 1024, exact in
+// floating point) used to give different functions. Scaled to a fixed
+// screening weight per average spacing, the function is the same.
+TEST(PoissonFunction, SameFunctionWhateverTheUnit) {
+  const PointSet points = test::sample_with_normals(test::chamfered_cube_mesh(0.6), 10000, 3);
+  PointSet millimetres = points;
+  for (Vec3& p : millimetres.points) p = 1024.0 * p;
+  std::mt19937_64 generator(7);
+  std::uniform_real_distribution<double> coordinate(-1.1, 1.1);
+  std::vector<Vec3> queries(2000);
+  for (Vec3& q : queries) q = {coordinate(generator), coordinate(generator), coordinate(generator)};
+  // Largest difference over the queries, relative to the largest value.
+  auto difference = [&](const PoissonOptions& options) {
+    const auto metres = poisson_surface(points, options), scaled = poisson_surface(millimetres, options);
+    double largest = 0, value = 0;
+    for (const Vec3& q : queries) {
+      largest = std::max(largest, std::abs(metres->value(q) - scaled->value(1024.0 * q)));
+      value = std::max(value, std::abs(metres->value(q)));
+    }
+    return largest / value;
+  };
+  EXPECT_LT(difference(PoissonOptions{}), 1e-6);
+  PoissonOptions unit_dependent;
+  unit_dependent.screening = 0;  // CGAL's own weight
+  EXPECT_GT(difference(unit_dependent), 1e-2);
+}
+
 // The start-cell grid changes where each point location starts, not where it
 // ends: the values are CGAL's, in any query order and from several threads.
 // (Inside the triangulation's hull: beyond it CGAL returns the value at a
@@ -292,8 +345,9 @@ TEST(PoissonFunction, StartCellGridGivesCgalsValuesInAnyOrderAndFromThreads) {
 }
 
 // A corner vertex pushed 0.087 inside the cube (the rounding the protecting
-// balls could not close) goes back onto the corner; a corner farther than
-// max_move from the mesh takes no vertex.
+// balls could not close) goes back onto the corner, which brings the mesh
+// closer to the cube's points; a corner farther than max_move from the mesh
+// takes no vertex.
 TEST(Snapping, MovesAVertexOntoAMissedCorner) {
   SurfaceMesh mesh = test::cube_mesh(0.5);
   std::size_t corner_vertex = 0;
@@ -305,13 +359,40 @@ TEST(Snapping, MovesAVertexOntoAMissedCorner) {
   options.corner_present = 0.01;
   options.data_present = 0.03;
   options.support_radius = 0.05;
-  const SnappingStats far = snap_to_corners_and_data(mesh, {{0.5, 0.5, 0.95}}, {}, options);
+  options.points_are_targets = false;
+  const std::vector<Vec3> points = test::sample_with_normals(test::cube_mesh(0.5), 20000, 1).points;
+  const SnappingStats far = snap_to_corners_and_data(mesh, {{0.5, 0.5, 0.95}}, points, options);
   EXPECT_EQ(far.corners, 0u);
   EXPECT_EQ(mesh.vertices[corner_vertex], (Vec3{0.45, 0.45, 0.45}));
-  const SnappingStats stats = snap_to_corners_and_data(mesh, {{0.5, 0.5, 0.5}, {-0.5, -0.5, -0.5}}, {}, options);
+  const SnappingStats stats = snap_to_corners_and_data(mesh, {{0.5, 0.5, 0.5}, {-0.5, -0.5, -0.5}}, points, options);
   EXPECT_EQ(stats.corners, 1u);  // the other corner is in the mesh already
   EXPECT_EQ(mesh.vertices[corner_vertex], (Vec3{0.5, 0.5, 0.5}));
   EXPECT_FALSE(check_topology(mesh).self_intersecting);
+}
+
+// A junction misplaced 0.08 inside a sphere (feature detection gone wrong
+// where a wall is as thin as the sampling) would pull the pole vertex down
+// into a dent: refused, as it takes the pole's facets off the sampled data.
+// Without data to judge by, the same corner is snapped onto.
+TEST(Snapping, RefusesACornerThatWouldTakeTheMeshOffTheData) {
+  const SurfaceMesh sphere = test::sphere_mesh(3);
+  std::size_t pole = 0;
+  for (std::size_t v = 0; v < sphere.vertices.size(); ++v)
+    if (sphere.vertices[v][2] > sphere.vertices[pole][2]) pole = v;
+  const Vec3 misplaced = 0.92 * sphere.vertices[pole];
+  const std::vector<Vec3> points = test::sample_with_normals(test::sphere_mesh(5), 20000, 1).points;
+  SnappingOptions options;
+  options.max_move = 0.15;
+  options.corner_present = 0.01;
+  options.data_present = 0.03;  // spacing about 0.025
+  options.support_radius = 0.04;
+  options.points_are_targets = false;
+  SurfaceMesh judged = sphere;
+  EXPECT_EQ(snap_to_corners_and_data(judged, {misplaced}, points, options).corners, 0u);
+  EXPECT_EQ(judged.vertices, sphere.vertices);
+  SurfaceMesh unjudged = sphere;
+  EXPECT_EQ(snap_to_corners_and_data(unjudged, {misplaced}, {}, options).corners, 1u);
+  EXPECT_EQ(unjudged.vertices[pole], misplaced);
 }
 
 // A dent of 0.1 in a sphere is pulled back onto the sampled data; a lone
