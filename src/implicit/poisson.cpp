@@ -266,7 +266,9 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   double scale = 1;
   if (options.screening > 0) {
     const double spacing = options.average_spacing > 0 ? options.average_spacing : average_spacing(points);
-    if (spacing > 0) scale = kCgalPoissonLambda / (options.screening * spacing);
+    // Clamped: a spacing of 0 (or nearly, all points doubled) must not blow
+    // the coordinates up; recentred clouds have diagonals in [2^-20, 2^20].
+    if (spacing > 0) scale = std::clamp(kCgalPoissonLambda / (options.screening * spacing), 1e-9, 1e9);
   }
   auto surface = std::make_unique<PoissonSurface>(samples, scale, options.start_cell_grid);
   if (!surface->solve()) throw NumericalFailure("Poisson reconstruction: the linear solver failed");
