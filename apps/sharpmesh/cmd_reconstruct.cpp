@@ -66,6 +66,9 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_option("--poisson-screening", o->reconstruct.poisson_screening,
                   "Pull of Poisson's function towards the points, relative to its smoothness, with lengths in average spacings: the same surface in any unit (0: CGAL's own weight, which depends on the unit)")
       ->capture_default_str();
+  sub->add_option("--poisson-screening-noisy", o->reconstruct.poisson_screening_noisy,
+                  "The same on clouds the feature extraction finds noisy (denoised, or noise of 0.05 avg or more)")
+      ->capture_default_str();
   sub->add_option("--seed-spacing", o->reconstruct.data_seed_spacing,
                   "Before refinement, project one input point per cell of F x d' onto the implicit surface as a mesh vertex, so parts thinner than the facets are not stepped over (0: none)")
       ->capture_default_str();
@@ -161,7 +164,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"features", o->no_features ? "none" : o->features_file.empty() ? "extract" : o->features_file},
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
-          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"poisson_screening", options.poisson_screening}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
+          {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"poisson_screening", options.poisson_screening}, {"poisson_screening_noisy", options.poisson_screening_noisy}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"data_fit_retry", options.refit_off_data},
           {"max_facets", options.max_facets}, {"seed", options.seed}}},
         {"derived",
@@ -176,7 +179,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals}, {"sharpened_normals", result.sharpened_normals}, {"sign_repaired_normals", result.sign_repaired_normals},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
-          {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
+          {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"poisson_screening", result.poisson_screening}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     const double spacing = result.average_spacing > 0 ? result.average_spacing : 1.0;

@@ -27,6 +27,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["data_seeds"] = r.meshing.data_seeds;
   counts["thin_points"] = r.thin_points;
   counts["flattened_vertices"] = r.flattened_vertices;
+  counts["poisson_screening"] = r.poisson_screening;
   counts["snapped_corners"] = r.snapped_corners;
   counts["snapped_to_data"] = r.snapped_to_data;
   counts["unsnapped_vertices"] = r.unsnapped_vertices;
@@ -73,7 +74,7 @@ void bind_reconstruct(py::module_& m) {
   const FeatureOptions f;
   m.def("reconstruct",
         [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
-           double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double poisson_screening, double seed_spacing, bool no_flattening, bool no_snapping, const std::string& normals, int normal_k, int orient_k,
+           double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double poisson_screening, double poisson_screening_noisy, double seed_spacing, bool no_flattening, bool no_snapping, const std::string& normals, int normal_k, int orient_k,
            bool recompute_normals, bool no_sign_repair, bool no_data_fit_retry, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
            double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k, bool fit_corner_points,
            const py::object& progress) {
@@ -89,6 +90,7 @@ void bind_reconstruct(py::module_& m) {
           o.poisson_spacing = poisson_spacing;
           o.poisson_thinning = poisson_thinning;
           o.poisson_screening = poisson_screening;
+          o.poisson_screening_noisy = poisson_screening_noisy;
           o.data_seed_spacing = seed_spacing;
           o.flatten_features = !no_flattening;
           o.snap_vertices = !no_snapping;
@@ -123,7 +125,7 @@ void bind_reconstruct(py::module_& m) {
         py::arg("no_features") = false, py::arg("features") = py::none(), py::arg("ball_radius") = d.ball_radius,
         py::arg("fixed_balls") = false, py::arg("trim") = d.trim_distance,
         py::arg("poisson_spacing") = d.poisson_spacing, py::arg("poisson_thinning") = d.poisson_thinning,
-        py::arg("poisson_screening") = d.poisson_screening, py::arg("seed_spacing") = d.data_seed_spacing,
+        py::arg("poisson_screening") = d.poisson_screening, py::arg("poisson_screening_noisy") = d.poisson_screening_noisy, py::arg("seed_spacing") = d.data_seed_spacing,
         py::arg("no_flattening") = false, py::arg("no_snapping") = false, py::arg("normals") = "auto",
         py::arg("normal_k") = d.normals.k, py::arg("orient_k") = d.orientation.k, py::arg("recompute_normals") = false,
         py::arg("no_sign_repair") = false, py::arg("no_data_fit_retry") = false,
@@ -138,7 +140,7 @@ instead of extracting them; ball_radius: fraction of d'; fixed_balls: do not gro
 trim: remove facets farther than trim x d' + 2 avg from the data (0: keep the closed surface); poisson_spacing: solve Poisson on a grid simplification with
 cells of poisson_spacing x d' (0: every point); poisson_thinning: leave out of Poisson the points closer than
 poisson_thinning x avg to an earlier one (0: none); poisson_screening: pull of the Poisson function towards the points
-relative to its smoothness, lengths in average spacings, the same in any unit (0: CGAL's own, unit-dependent); seed_spacing: before refinement, one input point per cell of
+relative to its smoothness, lengths in average spacings, the same in any unit (0: CGAL's own, unit-dependent); poisson_screening_noisy: the same on clouds found noisy; seed_spacing: before refinement, one input point per cell of
 seed_spacing x d' projected onto the implicit surface as a vertex (0: none); no_flattening: keep the facets along protected
 edges on the Poisson surface; no_snapping: leave the vertices where the refinement put them (by default up to 2 avg
 onto the corners and data points the mesh misses; report counts snapped_*); normals (when

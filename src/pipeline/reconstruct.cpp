@@ -38,8 +38,8 @@ void ReconstructOptions::check(std::size_t n) const {
     throw InvalidArgument("Poisson sample spacing is a fraction of d' in [0, 4] (got " + format_number(poisson_spacing) + ")");
   if (!(poisson_thinning >= 0 && poisson_thinning <= 2))
     throw InvalidArgument("Poisson thinning distance is a fraction of the average spacing in [0, 2] (got " + format_number(poisson_thinning) + ")");
-  if (!(poisson_screening >= 0 && poisson_screening <= 1e6))
-    throw InvalidArgument("Poisson screening weight must be in [0, 1e6] (got " + format_number(poisson_screening) + ")");
+  for (double w : {poisson_screening, poisson_screening_noisy})
+    if (!(w >= 0 && w <= 1e6)) throw InvalidArgument("Poisson screening weight must be in [0, 1e6] (got " + format_number(w) + ")");
   if (!(data_seed_spacing == 0 || (data_seed_spacing >= 0.5 && data_seed_spacing <= 100)))
     throw InvalidArgument("data seed spacing is 0 or a fraction of d' in [0.5, 100] (got " + format_number(data_seed_spacing) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)
@@ -339,7 +339,9 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     // each short Delaunay edge) with the same Hausdorff and mean error.
     const bool thin = options.poisson_thinning > 0, grid = options.poisson_spacing > 0;
     PoissonOptions poisson;
-    poisson.screening = options.poisson_screening;
+    const bool noisy = options.feature_mode == FeatureMode::Extract &&
+                       (result.features.denoise_passes > 0 || !(result.features.noise_estimate < kCleanNoise * result.average_spacing));
+    poisson.screening = result.poisson_screening = noisy ? options.poisson_screening_noisy : options.poisson_screening;
     poisson.average_spacing = result.average_spacing;
     if (!thin && !grid) return poisson_surface(oriented, poisson, progress, &diagnostics);
     PointSet samples{oriented.points, oriented.normals, {}};

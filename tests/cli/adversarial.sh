@@ -149,7 +149,7 @@ PY
       contract out.txt $bin features c.xyz -o out.txt $option
     done
     for option in "--delta 0" "--delta -1" "--delta 1e-9" "--delta 1e300" "--ball-radius 0" "--ball-radius -1" "--max-facets 10" \
-                  "--poisson-spacing -1" "--poisson-spacing 5" "--poisson-spacing nan" "--poisson-screening -1" "--poisson-screening nan"; do
+                  "--poisson-spacing -1" "--poisson-spacing 5" "--poisson-spacing nan" "--poisson-screening -1" "--poisson-screening nan" "--poisson-screening-noisy -1"; do
       contract out.ply $bin reconstruct c.xyz -o out.ply --no-features $option
     done
     contract out.ply $bin sample "$data/meshes/cube.off" -o out.ply -n 0

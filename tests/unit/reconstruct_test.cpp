@@ -435,6 +435,27 @@ TEST(Reconstruct, SignRepairFlipsTheNormalsThePoissonFunctionContradicts) {
   EXPECT_EQ(reconstruct(cloud, options).sign_repaired_normals, 0u);
 }
 
+// The Poisson function is pulled towards the points with the full weight on
+// clean clouds and a twelfth of it on the ones the feature extraction finds
+// noisy (a noisy point is no better than the smooth surface); the weight
+// used is reported. Given or no features: no noise estimate, full weight.
+TEST(Reconstruct, NoisyCloudsTakeTheWeakerPoissonScreening) {
+  const SurfaceMesh cube = test::cube_mesh(0.5);
+  ReconstructOptions options;
+  options.delta = 4;
+  const ReconstructResult clean = reconstruct(sample(cube, 20000), options);
+  EXPECT_DOUBLE_EQ(clean.poisson_screening, options.poisson_screening);
+  const ReconstructResult noisy = reconstruct(sample(cube, 20000, 0.01), options);
+  EXPECT_DOUBLE_EQ(noisy.poisson_screening, options.poisson_screening_noisy);
+  EXPECT_LT(options.poisson_screening_noisy, options.poisson_screening);
+  ReconstructOptions pif = options;
+  pif.feature_mode = FeatureMode::None;
+  EXPECT_DOUBLE_EQ(reconstruct(sample(cube, 20000, 0.01), pif).poisson_screening, options.poisson_screening);
+  ReconstructOptions bad = options;
+  bad.poisson_screening_noisy = -1;
+  EXPECT_THROW(reconstruct(sample(cube, 2000), bad), InvalidArgument);
+}
+
 TEST(Reconstruct, RejectsBadDeltaAndExplodingFacetCounts) {
   const PointSet points = sample(test::sphere_mesh(3), 2000);
   ReconstructOptions options;
