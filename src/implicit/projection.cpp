@@ -39,7 +39,8 @@ Vec3 bisect(const ImplicitSurface& surface, Vec3 lo, double flo, Vec3 hi, double
 
 /// Where Newton stalls, the nearest sign change along 26 directions (the
 /// axes, face and cube diagonals) on spheres of doubling radius from
-/// max_step / 2: a surface point within about twice the true distance.
+/// max_step / 2: a surface point, so an upper bound on the distance (exact
+/// when the nearest surface point lies along one of the directions).
 /// Stronger screening made CGAL's cube at 50k points stall Newton next to an
 /// edge (the function's cells are smallest there) and left 0.085 of the edge
 /// unprotected.

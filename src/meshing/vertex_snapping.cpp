@@ -180,7 +180,7 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
   VertexMover mover(mesh);
   // A corner move must not take v's facets farther from the data around them.
   std::unique_ptr<detail::KnnIndex> data;
-  if (!points.empty()) data = std::make_unique<detail::KnnIndex>(points);
+  if (!points.empty() && !corners.empty()) data = std::make_unique<detail::KnnIndex>(points);
   std::vector<std::uint32_t> near, near_target;
   auto fits_data_no_worse = [&](std::uint32_t v, const Vec3& to) {
     if (!data) return true;

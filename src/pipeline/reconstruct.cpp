@@ -38,8 +38,11 @@ void ReconstructOptions::check(std::size_t n) const {
     throw InvalidArgument("Poisson sample spacing is a fraction of d' in [0, 4] (got " + format_number(poisson_spacing) + ")");
   if (!(poisson_thinning >= 0 && poisson_thinning <= 2))
     throw InvalidArgument("Poisson thinning distance is a fraction of the average spacing in [0, 2] (got " + format_number(poisson_thinning) + ")");
-  for (double w : {poisson_screening, poisson_screening_noisy})
-    if (!(w >= 0 && w <= 1e6)) throw InvalidArgument("Poisson screening weight must be in [0, 1e6] (got " + format_number(w) + ")");
+  for (double w : {poisson_screening, poisson_screening_noisy}) {
+    PoissonOptions poisson;
+    poisson.screening = w;
+    poisson.check();
+  }
   if (!(data_seed_spacing == 0 || (data_seed_spacing >= 0.5 && data_seed_spacing <= 100)))
     throw InvalidArgument("data seed spacing is 0 or a fraction of d' in [0.5, 100] (got " + format_number(data_seed_spacing) + ")");
   if (spacing_k < 1 || static_cast<std::size_t>(spacing_k) >= n)

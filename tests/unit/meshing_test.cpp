@@ -370,6 +370,18 @@ TEST(Snapping, MovesAVertexOntoAMissedCorner) {
   EXPECT_FALSE(check_topology(mesh).self_intersecting);
 }
 
+namespace {
+/// Snapping distances for test::sphere_mesh sampled at 20,000 points (spacing about 0.025).
+SnappingOptions sphere_snapping() {
+  SnappingOptions options;
+  options.max_move = 0.15;
+  options.corner_present = 0.01;
+  options.data_present = 0.03;
+  options.support_radius = 0.04;
+  return options;
+}
+}  // namespace
+
 // A junction misplaced 0.08 inside a sphere (feature detection gone wrong
 // where a wall is as thin as the sampling) would pull the pole vertex down
 // into a dent: refused, as it takes the pole's facets off the sampled data.
@@ -381,11 +393,7 @@ TEST(Snapping, RefusesACornerThatWouldTakeTheMeshOffTheData) {
     if (sphere.vertices[v][2] > sphere.vertices[pole][2]) pole = v;
   const Vec3 misplaced = 0.92 * sphere.vertices[pole];
   const std::vector<Vec3> points = test::sample_with_normals(test::sphere_mesh(5), 20000, 1).points;
-  SnappingOptions options;
-  options.max_move = 0.15;
-  options.corner_present = 0.01;
-  options.data_present = 0.03;  // spacing about 0.025
-  options.support_radius = 0.04;
+  SnappingOptions options = sphere_snapping();
   options.points_are_targets = false;
   SurfaceMesh judged = sphere;
   EXPECT_EQ(snap_to_corners_and_data(judged, {misplaced}, points, options).corners, 0u);
@@ -416,11 +424,7 @@ TEST(Snapping, PullsTheMeshOntoSupportedDataButNotOntoALoneOutlier) {
   const double before = farthest_near_the_pole();
   EXPECT_GT(before, 0.07);
   const double outlier_before = distances_to_mesh({outlier}, mesh)[0];
-  SnappingOptions options;
-  options.max_move = 0.15;
-  options.corner_present = 0.01;
-  options.data_present = 0.03;     // spacing about 0.025
-  options.support_radius = 0.04;
+  SnappingOptions options = sphere_snapping();
   const SnappingStats stats = snap_to_corners_and_data(mesh, {}, points, options);
   EXPECT_GE(stats.data_points, 1u);
   EXPECT_LT(farthest_near_the_pole(), 0.5 * before);
