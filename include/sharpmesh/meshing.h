@@ -63,6 +63,16 @@ struct UncoveredGap {
 /// polyline; each removed one is reported. Returns the number removed.
 std::size_t drop_close_polylines(std::vector<Polyline>& polylines, double min_separation, std::vector<UncoveredGap>& dropped);
 
+/// The polylines as CGAL's feature protection needs them (its curves may
+/// meet only at their ends): points within `tolerance` of each other become
+/// one point, and every polyline is cut where it passes through the end of
+/// another or shares a point with another (a closed loop through corners
+/// becomes open pieces between them). Loops whose ends miss each other by
+/// less than `tolerance` are closed; consecutive repeats, pieces of one
+/// point and repeated pieces are dropped. Throws InvalidInput on a
+/// non-finite coordinate.
+std::vector<Polyline> curves_for_protection(const std::vector<Polyline>& polylines, double tolerance);
+
 struct ImplicitMeshingOptions {
   RefinementCriteria criteria;
   FeatureProtection features;

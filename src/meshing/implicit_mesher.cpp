@@ -81,24 +81,12 @@ struct BallSizing {
   }
 };
 
-/// Consecutive duplicates removed; polylines with fewer than two distinct
-/// points (or closed loops with fewer than three) dropped, and so are
-/// repeated polylines (CGAL's protection fails on overlapping curves).
-std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Polyline>& polylines) {
+/// CGAL's points of the curves_for_protection pieces.
+std::vector<std::vector<detail::Point3>> feature_polylines(const std::vector<Polyline>& polylines, double tolerance) {
   std::vector<std::vector<detail::Point3>> out;
-  for (const Polyline& line : polylines) {
-    std::vector<detail::Point3> points;
-    for (const Vec3& p : line) {
-      for (double c : p)
-        if (!std::isfinite(c)) throw InvalidInput("a feature polyline has a non-finite coordinate");
-      if (points.empty() || detail::from_cgal(points.back()) != p) points.push_back(detail::to_cgal(p));
-    }
-    const bool closed = points.size() > 1 && points.front() == points.back();
-    if (points.size() < (closed ? 4u : 2u)) continue;
-
-    std::vector<detail::Point3> reversed(points.rbegin(), points.rend());
-    if (std::find(out.begin(), out.end(), points) != out.end() || std::find(out.begin(), out.end(), reversed) != out.end()) continue;
-    out.push_back(std::move(points));
+  for (const Polyline& line : curves_for_protection(polylines, tolerance)) {
+    out.emplace_back();
+    for (const Vec3& p : line) out.back().push_back(detail::to_cgal(p));
   }
   return out;
 }
@@ -525,7 +513,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
   sizing.max_radius = options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius;
   ImplicitMeshingResult result;
   stalled.clear();
-  const auto polylines = coverable_parts(feature_polylines(options.features.polylines), surface, sizing, result.uncovered, rescue_stalled, stalled);
+  const auto polylines = coverable_parts(feature_polylines(options.features.polylines, 0.01 * options.features.ball_radius), surface, sizing, result.uncovered, rescue_stalled, stalled);
   domain.add_features(polylines.begin(), polylines.end());
 
   // The surface Delaunay ball radius bounds edges: radius <= l/2 gives edges <= l.

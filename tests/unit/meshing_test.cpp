@@ -282,6 +282,34 @@ TEST(FeatureSeparation, DropsTheShorterOfTwoCloseCurvesAndSelfCloseTraces) {
 // with the unit: the same cube in metres and in millimetres (x 1024, exact in
 // floating point) used to give different functions. Scaled to a fixed
 // screening weight per average spacing, the function is the same.
+// CGAL's curves meet only at their ends: a loop through another curve's end
+// is cut there, ends a rounding error apart are one point, repeats go.
+TEST(FeatureCurves, CutAtEachOthersEndsWithEndsARoundingErrorApartJoined) {
+  const double e = 1e-15;
+  const Polyline square{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, e}};
+  std::vector<Polyline> curves = curves_for_protection({square}, 1e-9);
+  ASSERT_EQ(curves.size(), 1u);
+  EXPECT_EQ(curves[0].front(), curves[0].back());  // closed exactly
+  EXPECT_EQ(curves[0].size(), 5u);
+  // A stem ending on the square's corner (1, 1, 0) and the square again,
+  // reversed: the loop starts and ends there, and is stored once.
+  const Polyline stem{{1, 1, 1}, {1, 1, e}};
+  const Polyline reversed_square(square.rbegin(), square.rend());
+  curves = curves_for_protection({square, stem, reversed_square}, 1e-9);
+  ASSERT_EQ(curves.size(), 2u);
+  EXPECT_LT(distance(curves[0].front(), {1, 1, 0}), 1e-12);
+  EXPECT_EQ(curves[0].front(), curves[0].back());
+  EXPECT_EQ(curves[1].back(), curves[0].front());  // one point, exactly
+  // Two lines crossing at a shared point: four pieces. Without a tolerance,
+  // the points 1e-15 apart stay apart and nothing is cut.
+  const std::vector<Polyline> cross{Polyline{{-1, 0, 0}, {0, 0, 0}, {1, 0, 0}}, Polyline{{0, -1, 0}, {0, 0, e}, {0, 1, 0}}};
+  EXPECT_EQ(curves_for_protection(cross, 1e-9).size(), 4u);
+  EXPECT_EQ(curves_for_protection(cross, 0).size(), 2u);
+  // Points closer than the tolerance merge; a piece of one point is dropped.
+  EXPECT_TRUE(curves_for_protection({Polyline{{0, 0, 0}, {0, 0, e}}}, 1e-9).empty());
+  EXPECT_THROW(curves_for_protection({Polyline{{0, 0, 0}, {0, std::nan(""), 0}}}, 1e-9), InvalidInput);
+}
+
 TEST(PoissonFunction, SameFunctionWhateverTheUnit) {
   const PointSet points = test::sample_with_normals(test::chamfered_cube_mesh(0.6), 10000, 3);
   PointSet millimetres = points;

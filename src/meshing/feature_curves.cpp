@@ -1,0 +1,108 @@
+// Polylines made fit for CGAL's feature protection (thesis 7.3.2 protects
+// curves that meet only at junctions). Extracted polylines meet at their
+// ends, but the ends of a loop can miss each other by a rounding error
+// (couplingdown 50k, sampling seed 7: 1e-18), which CGAL 5.5 takes for two
+// corners and then walks the curve for ever; given polylines (CAD exports)
+// often run through each other's corners as closed face outlines.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "sharpmesh/errors.h"
+#include "sharpmesh/meshing.h"
+
+namespace sharpmesh {
+namespace {
+
+/// Points within `tolerance` of an earlier point take its coordinates: a
+/// grid of cells of that size, searched in the 27 cells around a point.
+class PointWelder {
+ public:
+  explicit PointWelder(double tolerance) : tolerance_(tolerance) {}
+  Vec3 weld(const Vec3& p) {
+    if (!(tolerance_ > 0)) return p;
+    const std::array<long long, 3> cell = cell_of(p);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto found = cells_.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (found == cells_.end()) continue;
+          for (const Vec3& q : found->second)
+            if (distance(p, q) <= tolerance_) return q;
+        }
+    cells_[cell].push_back(p);
+    return p;
+  }
+
+ private:
+  std::array<long long, 3> cell_of(const Vec3& p) const {
+    return {static_cast<long long>(std::floor(p[0] / tolerance_)), static_cast<long long>(std::floor(p[1] / tolerance_)),
+            static_cast<long long>(std::floor(p[2] / tolerance_))};
+  }
+  double tolerance_;
+  std::map<std::array<long long, 3>, std::vector<Vec3>> cells_;
+};
+
+// CGAL's protection fails on overlapping curves: each one once, in either direction.
+bool contains(const std::vector<Polyline>& lines, const Polyline& line) {
+  const Polyline reversed(line.rbegin(), line.rend());
+  return std::find(lines.begin(), lines.end(), line) != lines.end() || std::find(lines.begin(), lines.end(), reversed) != lines.end();
+}
+
+}  // namespace
+
+std::vector<Polyline> curves_for_protection(const std::vector<Polyline>& polylines, double tolerance) {
+  if (!(tolerance >= 0) || !std::isfinite(tolerance)) throw InvalidArgument("curves_for_protection: tolerance must be finite and non-negative");
+  // Ends first, so that a loop's far end and a junction weld onto them.
+  PointWelder welder(tolerance);
+  for (const Polyline& line : polylines)
+    for (const Vec3& p : line)
+      for (double c : p)
+        if (!std::isfinite(c)) throw InvalidInput("a feature polyline has a non-finite coordinate");
+  for (const Polyline& line : polylines)
+    if (!line.empty()) welder.weld(line.front()), welder.weld(line.back());
+  std::vector<Polyline> welded;
+  for (const Polyline& line : polylines) {
+    Polyline points;
+    for (const Vec3& p : line) {
+      const Vec3 q = welder.weld(p);
+      if (points.empty() || points.back() != q) points.push_back(q);
+    }
+    if (points.size() >= 2 && !contains(welded, points)) welded.push_back(std::move(points));
+  }
+  // Corners: open ends, and points where other than two segments meet.
+  std::map<Vec3, int> degree;
+  for (const Polyline& line : welded)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) ++degree[line[i]], ++degree[line[i + 1]];
+  for (const Polyline& line : welded)
+    if (line.front() != line.back()) degree[line.front()] = degree[line.back()] = -1;
+  auto is_corner = [&](const Vec3& p) { return degree[p] != 2; };
+
+  std::vector<Polyline> pieces;
+  for (Polyline line : welded) {
+    if (line.front() == line.back()) {  // a loop: start it at a corner, if it has one
+      const auto corner = std::find_if(line.begin(), line.end() - 1, is_corner);
+      if (corner == line.end() - 1) {
+        if (line.size() >= 4) pieces.push_back(std::move(line));
+        continue;
+      }
+      Polyline rotated(corner, line.end() - 1);
+      rotated.insert(rotated.end(), line.begin(), corner + 1);
+      line = std::move(rotated);
+    }
+    Polyline piece{line.front()};
+    for (std::size_t i = 1; i < line.size(); ++i) {
+      piece.push_back(line[i]);
+      if (i + 1 == line.size() || is_corner(line[i])) {
+        if (piece.size() >= 2 && !(piece.size() < 4 && piece.front() == piece.back())) pieces.push_back(piece);
+        piece = {line[i]};
+      }
+    }
+  }
+  std::vector<Polyline> out;
+  for (Polyline& piece : pieces)
+    if (!contains(out, piece)) out.push_back(std::move(piece));
+  return out;
+}
+
+}  // namespace sharpmesh
