@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
@@ -43,6 +44,26 @@ class PointWelder {
   std::map<std::array<long long, 3>, std::vector<Vec3>> cells_;
 };
 
+// A polyline that turns back on itself (by more than 120 degrees) overlaps
+// itself, which CGAL's protection cannot take (couplingdown 50k, sampling
+// seed 9: a crash in its ball removal). Extracted polylines do that next to
+// a junction placed between their first two points: the turning point goes
+// (unless it is another polyline's end), until none is left.
+void remove_fold_backs(Polyline& line, const std::set<Vec3>& ends) {
+  for (bool removed = true; removed && line.size() >= 3;) {
+    removed = false;
+    for (std::size_t i = 1; i + 1 < line.size(); ++i) {
+      const Vec3 in = line[i] - line[i - 1], out = line[i + 1] - line[i];
+      if (dot(in, out) < -0.5 * norm(in) * norm(out) && !ends.count(line[i])) {
+        line.erase(line.begin() + static_cast<std::ptrdiff_t>(i));
+        if (line[i - 1] == line[i]) line.erase(line.begin() + static_cast<std::ptrdiff_t>(i));
+        removed = true;
+        break;
+      }
+    }
+  }
+}
+
 // CGAL's protection fails on overlapping curves: each one once, in either direction.
 bool contains(const std::vector<Polyline>& lines, const Polyline& line) {
   const Polyline reversed(line.rbegin(), line.rend());
@@ -59,8 +80,9 @@ std::vector<Polyline> curves_for_protection(const std::vector<Polyline>& polylin
     for (const Vec3& p : line)
       for (double c : p)
         if (!std::isfinite(c)) throw InvalidInput("a feature polyline has a non-finite coordinate");
+  std::set<Vec3> ends;
   for (const Polyline& line : polylines)
-    if (!line.empty()) welder.weld(line.front()), welder.weld(line.back());
+    if (!line.empty()) ends.insert(welder.weld(line.front())), ends.insert(welder.weld(line.back()));
   std::vector<Polyline> welded;
   for (const Polyline& line : polylines) {
     Polyline points;
@@ -68,6 +90,7 @@ std::vector<Polyline> curves_for_protection(const std::vector<Polyline>& polylin
       const Vec3 q = welder.weld(p);
       if (points.empty() || points.back() != q) points.push_back(q);
     }
+    remove_fold_backs(points, ends);
     if (points.size() >= 2 && !contains(welded, points)) welded.push_back(std::move(points));
   }
   // Corners: open ends, and points where other than two segments meet.

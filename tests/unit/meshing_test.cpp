@@ -305,6 +305,12 @@ TEST(FeatureCurves, CutAtEachOthersEndsWithEndsARoundingErrorApartJoined) {
   const std::vector<Polyline> cross{Polyline{{-1, 0, 0}, {0, 0, 0}, {1, 0, 0}}, Polyline{{0, -1, 0}, {0, 0, e}, {0, 1, 0}}};
   EXPECT_EQ(curves_for_protection(cross, 1e-9).size(), 4u);
   EXPECT_EQ(curves_for_protection(cross, 0).size(), 2u);
+  // A trace that turns back on itself loses the turning point; a loop that
+  // only goes out and back is nothing.
+  curves = curves_for_protection({Polyline{{0, 0, 0}, {0.3, 0, 0}, {0.2, 0.01, 0}, {1, 0, 0}}}, 1e-9);
+  ASSERT_EQ(curves.size(), 1u);
+  EXPECT_EQ(curves[0], (Polyline{{0, 0, 0}, {0.2, 0.01, 0}, {1, 0, 0}}));
+  EXPECT_TRUE(curves_for_protection({Polyline{{0, 0, 0}, {0, 0, 1}, {0, 0, 0.5}, {0, 0, e}}}, 1e-9).empty());
   // Points closer than the tolerance merge; a piece of one point is dropped.
   EXPECT_TRUE(curves_for_protection({Polyline{{0, 0, 0}, {0, 0, e}}}, 1e-9).empty());
   EXPECT_THROW(curves_for_protection({Polyline{{0, 0, 0}, {0, std::nan(""), 0}}}, 1e-9), InvalidInput);
