@@ -92,6 +92,28 @@ class VertexMover {
     return best;
   }
 
+  /// Integral over v's facets (v at p) of the distance to the nearest data
+  /// point beyond `free`, capped at `cap`: the mesh area away from the data.
+  double area_off_data(std::uint32_t v, const Vec3& p, const detail::KnnIndex& data, double free, double cap) const {
+    constexpr int kSteps = 6;  // 21 samples per facet
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    double integral = 0;
+    for (std::uint32_t f : faces_of_[v]) {
+      const Triangle& t = mesh_.faces[f];
+      const Vec3 a = at(t, 0, v, p), b = at(t, 1, v, p), c = at(t, 2, v, p);
+      double sum = 0;
+      int count = 0;
+      for (int i = 0; i < kSteps; ++i)
+        for (int j = 0; i + j < kSteps; ++j, ++count) {
+          data.nearest(a + ((i + 1.0 / 3) / kSteps) * (b - a) + ((j + 1.0 / 3) / kSteps) * (c - a), 1, ids, d2);
+          sum += ids.empty() ? cap - free : std::clamp(std::sqrt(d2[0]) - free, 0.0, cap - free);
+        }
+      integral += 0.5 * norm(cross(b - a, c - a)) * sum / count;
+    }
+    return integral;
+  }
+
  private:
   SurfaceMesh& mesh_;
   std::vector<std::vector<std::uint32_t>> faces_of_;
@@ -171,7 +193,7 @@ std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& 
 
 SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3>& corners, const std::vector<Vec3>& points,
                                        const SnappingOptions& o) {
-  for (double d : {o.max_move, o.corner_present, o.data_present, o.support_radius})
+  for (double d : {o.max_move, o.corner_present, o.data_present, o.support_radius, o.average_spacing})
     if (!(d >= 0) || !std::isfinite(d)) throw InvalidArgument("snapping: distances must be finite and non-negative");
   SnappingStats stats;
   if (mesh.faces.empty() || !(o.max_move > 0)) return stats;
@@ -197,6 +219,11 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
     double change = 0;
     for (std::uint32_t i : near)
       change += std::min(mover.distance_to_ring(v, to, points[i]), o.max_move) - std::min(mover.distance_to_ring(v, from, points[i]), o.max_move);
+    // And no farther from the data where there is none: the mesh area off
+    // the data, in points (one per spacing squared), counts the same way.
+    if (o.average_spacing > 0)
+      change += (mover.area_off_data(v, to, *data, o.data_present, o.max_move) - mover.area_off_data(v, from, *data, o.data_present, o.max_move)) /
+                (o.average_spacing * o.average_spacing);
     return change <= 0;
   };
   // Three passes: on a thin wall a point's nearest vertices can all go to

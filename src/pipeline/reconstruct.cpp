@@ -572,6 +572,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
       snapping.data_present = 0.75 * result.average_spacing + 3 * noise;
       snapping.support_radius = 1.5 * result.average_spacing;
       snapping.points_are_targets = clean;
+      snapping.average_spacing = result.average_spacing;
       {
         StageTimer timer(result.stages, "snapping");
         const SnappingStats stats = snap_to_corners_and_data(result.mesh, corners, input.points, snapping);

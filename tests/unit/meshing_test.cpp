@@ -437,6 +437,44 @@ TEST(Snapping, RefusesACornerThatWouldTakeTheMeshOffTheData) {
   EXPECT_EQ(unjudged.vertices[pole], misplaced);
 }
 
+// A junction misplaced 0.06 beyond the edge of a sampled plate (as into a
+// wall, where no point is: couplingdown 50k, sampling seeds 6 and 7) would
+// stretch the mesh past the data without taking it farther from any point:
+// refused when the mesh area off the data counts too (a spacing given).
+TEST(Snapping, RefusesACornerThatWouldStretchTheMeshWhereThereIsNoData) {
+  SurfaceMesh plate;  // [0, 1]^2 in a 10 x 10 grid
+  const int n = 10;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) plate.vertices.push_back({double(i) / n, double(j) / n, 0});
+  for (std::uint32_t j = 0; j < n; ++j)
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      plate.faces.push_back({a, b, d});
+      plate.faces.push_back({a, d, c});
+    }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Vec3> points(40000);
+  for (Vec3& p : points) p = {unit(rng), unit(rng), 0};
+  SnappingOptions options;
+  options.max_move = 0.1;
+  options.corner_present = 0.001;
+  options.data_present = 0.004;
+  options.support_radius = 0.0075;
+  options.points_are_targets = false;
+  const Vec3 misplaced{1.06, 0.5, 0};
+  SurfaceMesh data_only = plate;
+  EXPECT_EQ(snap_to_corners_and_data(data_only, {misplaced}, points, options).corners, 1u);
+  options.average_spacing = 0.005;
+  SurfaceMesh both_ways = plate;
+  EXPECT_EQ(snap_to_corners_and_data(both_ways, {misplaced}, points, options).corners, 0u);
+  EXPECT_EQ(both_ways.vertices, plate.vertices);
+  // A corner of the plate the mesh misses (its vertex pulled in) is still snapped onto.
+  both_ways.vertices[n] = {0.96, 0.04, 0};
+  EXPECT_EQ(snap_to_corners_and_data(both_ways, {{1, 0, 0}}, points, options).corners, 1u);
+  EXPECT_EQ(both_ways.vertices[n], (Vec3{1, 0, 0}));
+}
+
 // A dent of 0.1 in a sphere is pulled back onto the sampled data; a lone
 // point 0.08 outside the sphere (an outlier) pulls no vertex.
 TEST(Snapping, PullsTheMeshOntoSupportedDataButNotOntoALoneOutlier) {
