@@ -36,9 +36,11 @@ class PointWelder {
   }
 
  private:
+  // Clamped so that no conversion overflows (far cells then share a key: slower, not wrong).
   std::array<long long, 3> cell_of(const Vec3& p) const {
-    return {static_cast<long long>(std::floor(p[0] / tolerance_)), static_cast<long long>(std::floor(p[1] / tolerance_)),
-            static_cast<long long>(std::floor(p[2] / tolerance_))};
+    std::array<long long, 3> cell;
+    for (int k = 0; k < 3; ++k) cell[k] = static_cast<long long>(std::clamp(std::floor(p[k] / tolerance_), -1e15, 1e15));
+    return cell;
   }
   double tolerance_;
   std::map<std::array<long long, 3>, std::vector<Vec3>> cells_;
