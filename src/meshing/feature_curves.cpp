@@ -9,42 +9,31 @@
 #include <map>
 #include <set>
 
+#include "pointset/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
 
 namespace sharpmesh {
 namespace {
 
-/// Points within `tolerance` of an earlier point take its coordinates: a
-/// grid of cells of that size, searched in the 27 cells around a point.
-class PointWelder {
- public:
-  explicit PointWelder(double tolerance) : tolerance_(tolerance) {}
-  Vec3 weld(const Vec3& p) {
-    if (!(tolerance_ > 0)) return p;
-    const std::array<long long, 3> cell = cell_of(p);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz) {
-          const auto found = cells_.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (found == cells_.end()) continue;
-          for (const Vec3& q : found->second)
-            if (distance(p, q) <= tolerance_) return q;
-        }
-    cells_[cell].push_back(p);
-    return p;
+/// Each point within `tolerance` of an earlier one (in `points`' order)
+/// takes the coordinates of the earliest one within reach.
+std::map<Vec3, Vec3> weld(const std::vector<Vec3>& points, double tolerance) {
+  std::map<Vec3, Vec3> welded;
+  if (points.empty()) return welded;
+  const detail::KnnIndex index(points);
+  std::vector<std::uint32_t> near;
+  for (const Vec3& p : points) {
+    if (welded.count(p)) continue;
+    index.within(p, tolerance, near);
+    Vec3 to = p;
+    std::uint32_t first = static_cast<std::uint32_t>(points.size());
+    for (std::uint32_t i : near)
+      if (i < first && welded.count(points[i])) first = i, to = welded[points[i]];
+    welded[p] = to;
   }
-
- private:
-  // Clamped so that no conversion overflows (far cells then share a key: slower, not wrong).
-  std::array<long long, 3> cell_of(const Vec3& p) const {
-    std::array<long long, 3> cell;
-    for (int k = 0; k < 3; ++k) cell[k] = static_cast<long long>(std::clamp(std::floor(p[k] / tolerance_), -1e15, 1e15));
-    return cell;
-  }
-  double tolerance_;
-  std::map<std::array<long long, 3>, std::vector<Vec3>> cells_;
-};
+  return welded;
+}
 
 // A polyline that turns back on itself (by more than 120 degrees) overlaps
 // itself, which CGAL's protection cannot take (couplingdown 50k, sampling
@@ -77,19 +66,24 @@ bool contains(const std::vector<Polyline>& lines, const Polyline& line) {
 std::vector<Polyline> curves_for_protection(const std::vector<Polyline>& polylines, double tolerance) {
   if (!(tolerance >= 0) || !std::isfinite(tolerance)) throw InvalidArgument("curves_for_protection: tolerance must be finite and non-negative");
   // Ends first, so that a loop's far end and a junction weld onto them.
-  PointWelder welder(tolerance);
+  std::vector<Vec3> order;
   for (const Polyline& line : polylines)
-    for (const Vec3& p : line)
+    if (!line.empty()) order.push_back(line.front()), order.push_back(line.back());
+  const std::size_t end_count = order.size();
+  for (const Polyline& line : polylines)
+    for (const Vec3& p : line) {
       for (double c : p)
         if (!std::isfinite(c)) throw InvalidInput("a feature polyline has a non-finite coordinate");
+      order.push_back(p);
+    }
+  const std::map<Vec3, Vec3> weld_to = weld(order, tolerance);
   std::set<Vec3> ends;
-  for (const Polyline& line : polylines)
-    if (!line.empty()) ends.insert(welder.weld(line.front())), ends.insert(welder.weld(line.back()));
+  for (std::size_t i = 0; i < end_count; ++i) ends.insert(weld_to.at(order[i]));
   std::vector<Polyline> welded;
   for (const Polyline& line : polylines) {
     Polyline points;
     for (const Vec3& p : line) {
-      const Vec3 q = welder.weld(p);
+      const Vec3 q = weld_to.at(p);
       if (points.empty() || points.back() != q) points.push_back(q);
     }
     remove_fold_backs(points, ends);
