@@ -187,8 +187,11 @@ std::size_t flatten_next_to_features(SurfaceMesh& mesh, const std::vector<Polyli
 /// After vertex moves (flattening, snapping): the moved vertices (those
 /// that differ from `before`) of intersecting facets go back, until no
 /// facets intersect or none of theirs moved; if eight rounds still leave an
-/// intersection, every move goes back. Returns the number of vertices put back.
-std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before);
+/// intersection, every move goes back. With `move_order` (the vertices in
+/// the order they moved), each intersecting pair of facets first gives back
+/// only its latest move, for up to sixteen rounds, so that an earlier move
+/// is not undone for a later neighbour's. Returns the number of vertices put back.
+std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before, const std::vector<std::uint32_t>& move_order = {});
 
 /// Snapping (beyond the thesis): mesh vertices moved onto the corners and
 /// data points the mesh misses. Distances in data units.
@@ -209,11 +212,17 @@ struct SnappingOptions {
   /// (couplingdown 50k, sampling seeds 6 and 7: 1.6 and 1.9 spacings off).
   /// 0: not checked.
   double average_spacing = 0;
+  /// With a normal per input point: a vertex farther than data_present from
+  /// its nearest point and from that point's tangent plane moves onto the
+  /// plane, judged like a corner move (a bridge over an undersampled slot, a
+  /// dent into a thin wall: couplingdown 50k, 1.1-1.3 spacings off).
+  std::vector<Vec3> point_normals;
 };
 
 struct SnappingStats {
   std::size_t corners = 0;      ///< vertices moved onto corners
   std::size_t data_points = 0;  ///< vertices moved onto input points the mesh missed
+  std::size_t off_data_vertices = 0;  ///< vertices away from the data moved onto its tangent planes
   std::size_t undone = 0;       ///< moves undone because they made facets intersect
 };
 

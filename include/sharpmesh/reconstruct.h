@@ -133,6 +133,7 @@ struct ReconstructResult {
   double poisson_screening = 0;       ///< the weight used (poisson_screening or poisson_screening_noisy)
   std::size_t snapped_corners = 0;     ///< mesh vertices moved onto corners the refinement missed
   std::size_t snapped_to_data = 0;     ///< mesh vertices moved onto input points the mesh missed
+  std::size_t snapped_off_data = 0;    ///< mesh vertices away from the data moved onto its tangent planes
   std::size_t unsnapped_vertices = 0;  ///< snaps undone because they made facets intersect
   std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)

@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include <CGAL/squared_distance_3.h>
 
@@ -28,6 +29,8 @@ namespace {
 // A move may not leave a facet with an angle below this (degrees) unless it
 // had one already: the refinement's facets have 25 degrees and more.
 constexpr double kMinAngle = 10;
+// Tangent planes a vertex away from the data is measured against.
+constexpr int kPlanes = 8;
 
 struct Target {
   Vec3 position;
@@ -54,6 +57,7 @@ class VertexMover {
     if (accept && !accept(v, to)) return false;
     mesh_.vertices[v] = to;
     moved_[v] = 1;
+    order_.push_back(v);
     return true;
   }
 
@@ -118,6 +122,11 @@ class VertexMover {
   SurfaceMesh& mesh_;
   std::vector<std::vector<std::uint32_t>> faces_of_;
   std::vector<char> moved_;
+  std::vector<std::uint32_t> order_;
+
+ public:
+  /// The vertices moved, in the order they moved.
+  const std::vector<std::uint32_t>& order() const { return order_; }
 };
 
 // Worst first, each target takes the nearest of its four nearest vertices
@@ -166,17 +175,85 @@ void find_targets(const SurfaceMesh& mesh, const std::vector<Vec3>& corners, con
   }
 }
 
+// Each vertex farther than data_present from the tangent disks (radius one
+// spacing) of its kPlanes nearest points moves onto the nearest disk, worst
+// first, if `accept` agrees. One disk is not enough: a vertex on a face
+// next to a wall can be nearest to a point of the wall; and a plane must
+// end: a slot's wall, extended, passes through its floor's corner.
+std::size_t snap_off_data_vertices(VertexMover& mover, const detail::KnnIndex& data, const std::vector<Vec3>& points,
+                                   const std::vector<Vec3>& normals,
+                                   const SnappingOptions& o, const std::function<bool(std::uint32_t, const Vec3&)>& accept) {
+  struct Move {
+    std::uint32_t vertex;
+    Vec3 to;
+    double offset;
+  };
+  std::vector<Move> moves;
+  std::vector<std::uint32_t> ids;
+  std::vector<double> d2;
+  const std::vector<Vec3>& vertices = mover.mesh().vertices;
+  const double radius = o.average_spacing > 0 ? o.average_spacing : o.data_present;
+  for (std::uint32_t v = 0; v < vertices.size(); ++v) {
+    if (mover.faces_of(v).empty()) continue;
+    data.nearest(vertices[v], kPlanes, ids, d2);
+    if (ids.empty() || std::sqrt(d2[0]) <= o.data_present) continue;
+    double offset = std::numeric_limits<double>::infinity();
+    Vec3 foot{};
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const double length = norm(normals[ids[k]]);
+      if (!(length > 0)) continue;
+      const Vec3 n = (1 / length) * normals[ids[k]];
+      const Vec3 from_point = vertices[v] - points[ids[k]];
+      const Vec3 along = from_point - dot(from_point, n) * n;
+      const double reach = norm(along), beyond = std::max(0.0, reach - radius);
+      const double off = std::hypot(dot(from_point, n), beyond);
+      if (off < offset) offset = off, foot = points[ids[k]] + (beyond > 0 ? radius / reach : 1.0) * along;
+    }
+    if (offset > o.data_present && offset <= o.max_move) moves.push_back({v, foot, offset});
+  }
+  std::stable_sort(moves.begin(), moves.end(), [](const Move& a, const Move& b) { return a.offset > b.offset; });
+  std::size_t count = 0;
+  for (const Move& move : moves) count += mover.try_move(move.vertex, move.to, accept);
+  return count;
+}
+
 }  // namespace
 
-std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before) {
+std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before, const std::vector<std::uint32_t>& move_order) {
   if (before.size() != mesh.vertices.size()) throw InvalidArgument("undo_intersecting_moves: vertex counts differ");
+  std::vector<std::size_t> rank(mesh.vertices.size(), 0);
+  for (std::size_t k = 0; k < move_order.size(); ++k)
+    if (move_order[k] >= rank.size()) throw InvalidArgument("undo_intersecting_moves: vertex index out of range");
+    else rank[move_order[k]] = k + 1;
   std::size_t undone = 0;
+  auto moved = [&](std::uint32_t v) { return !(mesh.vertices[v] == before[v]); };
   auto restore = [&](std::uint32_t v) {
-    if (mesh.vertices[v] == before[v]) return false;
+    if (!moved(v)) return false;
     mesh.vertices[v] = before[v];
     ++undone;
     return true;
   };
+  // With an order, each intersecting pair first loses only its last move.
+  const int ordered_rounds = move_order.empty() ? 0 : 16;
+  // A pair with a vertex put back in this round waits for the next check.
+  std::vector<int> put_back_in(mesh.vertices.size(), -1);
+  for (int round = 0; round < ordered_rounds; ++round) {
+    bool restored = false;
+    for (const auto& [a, b] : self_intersecting_faces(mesh)) {
+      std::uint32_t last = 0;
+      bool any = false, waits = false;
+      for (std::uint32_t f : {a, b})
+        for (std::uint32_t v : mesh.faces[f]) {
+          waits = waits || put_back_in[v] == round;
+          if (moved(v) && (!any || rank[v] > rank[last])) last = v, any = true;
+        }
+      if (!any || waits) continue;
+      restore(last);
+      put_back_in[last] = round;
+      restored = true;
+    }
+    if (!restored) break;
+  }
   for (int round = 0;; ++round) {
     bool restored = false;
     for (const auto& [a, b] : self_intersecting_faces(mesh))
@@ -195,6 +272,8 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
                                        const SnappingOptions& o) {
   for (double d : {o.max_move, o.corner_present, o.data_present, o.support_radius, o.average_spacing})
     if (!(d >= 0) || !std::isfinite(d)) throw InvalidArgument("snapping: distances must be finite and non-negative");
+  if (!o.point_normals.empty() && o.point_normals.size() != points.size())
+    throw InvalidArgument("snapping: " + std::to_string(o.point_normals.size()) + " normals for " + std::to_string(points.size()) + " points");
   SnappingStats stats;
   if (mesh.faces.empty() || !(o.max_move > 0)) return stats;
   const std::vector<Vec3> before = mesh.vertices;
@@ -202,7 +281,8 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
   VertexMover mover(mesh);
   // A corner move must not take v's facets farther from the data around them.
   std::unique_ptr<detail::KnnIndex> data;
-  if (!points.empty() && !corners.empty()) data = std::make_unique<detail::KnnIndex>(points);
+  const bool vertices_to_planes = !o.point_normals.empty();
+  if (!points.empty() && (!corners.empty() || vertices_to_planes)) data = std::make_unique<detail::KnnIndex>(points);
   std::vector<std::uint32_t> near, near_target;
   auto fits_data_no_worse = [&](std::uint32_t v, const Vec3& to) {
     if (!data) return true;
@@ -233,12 +313,14 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
     find_targets(mesh, corners, points, o, corner_targets, data_targets);
     const std::size_t corners_moved = snap_vertices(mover, original_vertices, std::move(corner_targets), o.max_move, fits_data_no_worse);
     const std::size_t data_moved = snap_vertices(mover, original_vertices, std::move(data_targets), o.max_move);
+    const std::size_t vertices_moved = vertices_to_planes ? snap_off_data_vertices(mover, *data, points, o.point_normals, o, fits_data_no_worse) : 0;
     stats.corners += corners_moved;
     stats.data_points += data_moved;
-    if (corners_moved + data_moved == 0) break;
+    stats.off_data_vertices += vertices_moved;
+    if (corners_moved + data_moved + vertices_moved == 0) break;
   }
-  if (stats.corners + stats.data_points == 0) return stats;
-  stats.undone = undo_intersecting_moves(mesh, before);
+  if (stats.corners + stats.data_points + stats.off_data_vertices == 0) return stats;
+  stats.undone = undo_intersecting_moves(mesh, before, mover.order());
   return stats;
 }
 

@@ -573,14 +573,16 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
       snapping.support_radius = 1.5 * result.average_spacing;
       snapping.points_are_targets = clean;
       snapping.average_spacing = result.average_spacing;
+      if (clean) snapping.point_normals = retry_normals.empty() ? oriented.normals : retry_normals;
       {
         StageTimer timer(result.stages, "snapping");
         const SnappingStats stats = snap_to_corners_and_data(result.mesh, corners, input.points, snapping);
         result.snapped_corners = stats.corners;
         result.snapped_to_data = stats.data_points;
+        result.snapped_off_data = stats.off_data_vertices;
         result.unsnapped_vertices = stats.undone;
       }
-      if (result.snapped_corners + result.snapped_to_data > result.unsnapped_vertices) {
+      if (result.snapped_corners + result.snapped_to_data + result.snapped_off_data > result.unsnapped_vertices) {
         StageTimer timer(result.stages, "data fit after snapping");
         fit = detail::fit_to_data(result.mesh, input.points, retry_normals.empty() ? oriented.normals : retry_normals, off_distance);
       }

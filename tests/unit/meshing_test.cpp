@@ -437,25 +437,41 @@ TEST(Snapping, RefusesACornerThatWouldTakeTheMeshOffTheData) {
   EXPECT_EQ(unjudged.vertices[pole], misplaced);
 }
 
+namespace {
+
+// Appends [0, 1]^2 at height z as an n x n grid of facet pairs.
+void add_plate(SurfaceMesh& mesh, int n, double z) {
+  const std::uint32_t base = mesh.vertices.size();
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) mesh.vertices.push_back({double(i) / n, double(j) / n, z});
+  for (std::uint32_t j = 0; j < std::uint32_t(n); ++j)
+    for (std::uint32_t i = 0; i < std::uint32_t(n); ++i) {
+      const std::uint32_t a = base + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      mesh.faces.push_back({a, b, d});
+      mesh.faces.push_back({a, d, c});
+    }
+}
+
+// `count` uniform random points on [0, 1]^2 at z = 0.
+std::vector<Vec3> plate_points(std::size_t count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Vec3> points(count);
+  for (Vec3& p : points) p = {unit(rng), unit(rng), 0};
+  return points;
+}
+
+}  // namespace
+
 // A junction misplaced 0.06 beyond the edge of a sampled plate (as into a
 // wall, where no point is: couplingdown 50k, sampling seeds 6 and 7) would
 // stretch the mesh past the data without taking it farther from any point:
 // refused when the mesh area off the data counts too (a spacing given).
 TEST(Snapping, RefusesACornerThatWouldStretchTheMeshWhereThereIsNoData) {
-  SurfaceMesh plate;  // [0, 1]^2 in a 10 x 10 grid
   const int n = 10;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) plate.vertices.push_back({double(i) / n, double(j) / n, 0});
-  for (std::uint32_t j = 0; j < n; ++j)
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      plate.faces.push_back({a, b, d});
-      plate.faces.push_back({a, d, c});
-    }
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> unit(0, 1);
-  std::vector<Vec3> points(40000);
-  for (Vec3& p : points) p = {unit(rng), unit(rng), 0};
+  SurfaceMesh plate;
+  add_plate(plate, n, 0);
+  const std::vector<Vec3> points = plate_points(40000, 3);
   SnappingOptions options;
   options.max_move = 0.1;
   options.corner_present = 0.001;
@@ -503,4 +519,58 @@ TEST(Snapping, PullsTheMeshOntoSupportedDataButNotOntoALoneOutlier) {
   EXPECT_NEAR(distances_to_mesh({outlier}, mesh)[0], outlier_before, 1e-12);
   const TopologyReport topology = check_topology(mesh);
   EXPECT_TRUE(topology.closed() && topology.manifold() && !topology.self_intersecting);
+}
+
+// A vertex dented 0.05 into a sampled plate, where no point is (as into a
+// thin wall, couplingdown 50k): with the points' normals it moves back onto
+// their tangent plane; without them it stays.
+TEST(Snapping, MovesAVertexAwayFromTheDataOntoItsTangentPlane) {
+  const int n = 10;
+  SurfaceMesh plate;
+  add_plate(plate, n, 0);
+  const std::vector<Vec3> points = plate_points(40000, 5);
+  const std::size_t centre = 5 * (n + 1) + 5;
+  plate.vertices[centre] = {0.5, 0.5, -0.05};
+  SnappingOptions options;
+  options.max_move = 0.1;
+  options.data_present = 0.004;
+  options.support_radius = 0.0075;
+  options.points_are_targets = false;
+  options.average_spacing = 0.005;
+  SurfaceMesh without_normals = plate;
+  EXPECT_EQ(snap_to_corners_and_data(without_normals, {}, points, options).off_data_vertices, 0u);
+  EXPECT_EQ(without_normals.vertices, plate.vertices);
+  options.point_normals.assign(points.size(), Vec3{0, 0, -2});  // any length, either side
+  SurfaceMesh with_normals = plate;
+  const SnappingStats stats = snap_to_corners_and_data(with_normals, {}, points, options);
+  EXPECT_EQ(stats.off_data_vertices, 1u);
+  EXPECT_EQ(stats.undone, 0u);
+  EXPECT_NEAR(with_normals.vertices[centre][2], 0, 1e-12);
+  EXPECT_NEAR(norm(with_normals.vertices[centre] - Vec3{0.5, 0.5, 0}), 0, 0.01);  // along the normal only
+  options.point_normals.pop_back();
+  EXPECT_THROW(snap_to_corners_and_data(with_normals, {}, points, options), InvalidArgument);
+}
+
+// Two plates 0.05 apart; a vertex of the lower one moved up through the
+// upper one, whose vertex above it slid sideways (harmless) before: in move
+// order only the later, intersecting move goes back; without it both do.
+TEST(Snapping, UndoGivesBackTheLatestMoveOfAnIntersectingPairFirst) {
+  const int n = 10;
+  SurfaceMesh plates;
+  add_plate(plates, n, 0);
+  add_plate(plates, n, 0.05);
+  const std::vector<Vec3> before = plates.vertices;
+  const std::uint32_t lower = 5 * (n + 1) + 5, upper = lower + (n + 1) * (n + 1);
+  plates.vertices[upper] = {0.51, 0.5, 0.05};
+  plates.vertices[lower] = {0.5, 0.5, 0.1};
+  ASSERT_FALSE(self_intersecting_faces(plates).empty());
+  SurfaceMesh ordered = plates;
+  EXPECT_EQ(undo_intersecting_moves(ordered, before, {upper, lower}), 1u);
+  EXPECT_EQ(ordered.vertices[lower], before[lower]);
+  EXPECT_EQ(ordered.vertices[upper], plates.vertices[upper]);
+  EXPECT_TRUE(self_intersecting_faces(ordered).empty());
+  SurfaceMesh unordered = plates;
+  EXPECT_EQ(undo_intersecting_moves(unordered, before), 2u);
+  EXPECT_EQ(unordered.vertices, before);
+  EXPECT_THROW(undo_intersecting_moves(unordered, before, {std::uint32_t(before.size())}), InvalidArgument);
 }
