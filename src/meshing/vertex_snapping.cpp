@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 
+#include <CGAL/intersections.h>
 #include <CGAL/squared_distance_3.h>
 
 #include "eval/triangle_distance.h"
@@ -43,7 +44,10 @@ class VertexMover {
  public:
   explicit VertexMover(SurfaceMesh& mesh) : mesh_(mesh), faces_of_(mesh.vertices.size()), moved_(mesh.vertices.size(), 0) {
     for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
-      for (std::uint32_t v : mesh.faces[f]) faces_of_[v].push_back(f);
+      for (int k = 0; k < 3; ++k) {
+        faces_of_[mesh.faces[f][k]].push_back(f);
+        longest_edge_ = std::max(longest_edge_, norm(mesh.vertices[mesh.faces[f][k]] - mesh.vertices[mesh.faces[f][(k + 1) % 3]]));
+      }
   }
   /// `accept` (may be empty) has the last word on a move that passes the facet checks.
   bool try_move(std::uint32_t v, const Vec3& to, const std::function<bool(std::uint32_t, const Vec3&)>& accept = {}) {
@@ -96,6 +100,56 @@ class VertexMover {
     return best;
   }
 
+  /// Whether v's facets, with v at p, meet no other facet except at shared
+  /// vertices and edges. `original` indexes the vertices before any move;
+  /// none moves farther than `max_move`, so a facet that meets them had its
+  /// vertices within reach + longest edge + 3 max_move of v (the edge may
+  /// have grown by 2 max_move, the vertex moved by one).
+  bool keeps_facets_apart(std::uint32_t v, const Vec3& p, const detail::KnnIndex& original, double max_move) const {
+    const Vec3 from = mesh_.vertices[v];
+    double reach = 0;
+    for (std::uint32_t f : faces_of_[v])
+      for (std::uint32_t w : mesh_.faces[f]) reach = std::max({reach, norm(mesh_.vertices[w] - from), norm(mesh_.vertices[w] - p)});
+    std::vector<std::uint32_t> near, more;
+    const double radius = reach + longest_edge_ + 3 * max_move;
+    original.within(from, radius, near);
+    original.within(p, radius, more);
+    near.insert(near.end(), more.begin(), more.end());
+    std::vector<std::uint32_t> faces;
+    for (std::uint32_t w : near) faces.insert(faces.end(), faces_of_[w].begin(), faces_of_[w].end());
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    for (std::uint32_t f : faces_of_[v])
+      for (std::uint32_t g : faces)
+        if (g != f && facets_meet(f, g, v, p)) return false;
+    return true;
+  }
+
+  /// Whether facets f and g (v at p) meet beyond their shared vertices and
+  /// edge, as Polygon_mesh_processing::self_intersections decides it.
+  bool facets_meet(std::uint32_t f, std::uint32_t g, std::uint32_t v, const Vec3& p) const {
+    const Triangle& s = mesh_.faces[f];
+    const Triangle& t = mesh_.faces[g];
+    auto point = [&](std::uint32_t w) { return detail::to_cgal(w == v ? p : mesh_.vertices[w]); };
+    int shared = 0, si[3], ti[3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (s[i] == t[j]) si[shared] = i, ti[shared] = j, ++shared;
+    using K = detail::Kernel;
+    if (shared == 0) return CGAL::do_intersect(K::Triangle_3(point(s[0]), point(s[1]), point(s[2])), K::Triangle_3(point(t[0]), point(t[1]), point(t[2])));
+    if (shared == 1) {  // each one's opposite edge against the other
+      const K::Triangle_3 a(point(s[0]), point(s[1]), point(s[2])), b(point(t[0]), point(t[1]), point(t[2]));
+      if (a.is_degenerate() || b.is_degenerate()) return false;
+      const K::Segment_3 a_edge(point(s[(si[0] + 1) % 3]), point(s[(si[0] + 2) % 3])), b_edge(point(t[(ti[0] + 1) % 3]), point(t[(ti[0] + 2) % 3]));
+      return CGAL::do_intersect(a_edge, b) || CGAL::do_intersect(b_edge, a);
+    }
+    if (shared == 2) {  // folded onto each other
+      const K::Point_3 e0 = point(s[si[0]]), e1 = point(s[si[1]]), a = point(s[3 - si[0] - si[1]]), b = point(t[3 - ti[0] - ti[1]]);
+      return CGAL::coplanar(e0, e1, a, b) && CGAL::coplanar_orientation(e0, e1, a, b) == CGAL::POSITIVE;
+    }
+    return false;
+  }
+
   /// Integral over v's facets (v at p) of the distance to the nearest data
   /// point beyond `free`, capped at `cap`: the mesh area away from the data.
   double area_off_data(std::uint32_t v, const Vec3& p, const detail::KnnIndex& data, double free, double cap) const {
@@ -123,6 +177,7 @@ class VertexMover {
   std::vector<std::vector<std::uint32_t>> faces_of_;
   std::vector<char> moved_;
   std::vector<std::uint32_t> order_;
+  double longest_edge_ = 0;  // before any move
 
  public:
   /// The vertices moved, in the order they moved.
@@ -306,14 +361,18 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
                 (o.average_spacing * o.average_spacing);
     return change <= 0;
   };
+  // Moves are refused at once when they make facets intersect (undoing them
+  // afterwards would also undo the moves of their neighbours).
+  auto apart = [&](std::uint32_t v, const Vec3& to) { return mover.keeps_facets_apart(v, to, original_vertices, o.max_move); };
+  auto fits_and_apart = [&](std::uint32_t v, const Vec3& to) { return fits_data_no_worse(v, to) && apart(v, to); };
   // Three passes: on a thin wall a point's nearest vertices can all go to
   // worse points first, and the mesh they leave is measured again.
   std::vector<Target> corner_targets, data_targets;
   for (int pass = 0; pass < 3; ++pass) {
     find_targets(mesh, corners, points, o, corner_targets, data_targets);
-    const std::size_t corners_moved = snap_vertices(mover, original_vertices, std::move(corner_targets), o.max_move, fits_data_no_worse);
-    const std::size_t data_moved = snap_vertices(mover, original_vertices, std::move(data_targets), o.max_move);
-    const std::size_t vertices_moved = vertices_to_planes ? snap_off_data_vertices(mover, *data, points, o.point_normals, o, fits_data_no_worse) : 0;
+    const std::size_t corners_moved = snap_vertices(mover, original_vertices, std::move(corner_targets), o.max_move, fits_and_apart);
+    const std::size_t data_moved = snap_vertices(mover, original_vertices, std::move(data_targets), o.max_move, apart);
+    const std::size_t vertices_moved = vertices_to_planes ? snap_off_data_vertices(mover, *data, points, o.point_normals, o, fits_and_apart) : 0;
     stats.corners += corners_moved;
     stats.data_points += data_moved;
     stats.off_data_vertices += vertices_moved;

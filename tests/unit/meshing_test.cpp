@@ -574,3 +574,30 @@ TEST(Snapping, UndoGivesBackTheLatestMoveOfAnIntersectingPairFirst) {
   EXPECT_EQ(unordered.vertices, before);
   EXPECT_THROW(undo_intersecting_moves(unordered, before, {std::uint32_t(before.size())}), InvalidArgument);
 }
+
+// Points 0.02 above a plate of two large facets at z = 0.05, over a fine
+// plate at z = 0: the only vertex within reach is the fine plate's, and
+// moving it onto them would pierce the upper plate. Refused at once, so
+// nothing is moved and nothing needs undoing.
+TEST(Snapping, RefusesAMoveThatWouldPushAFacetThroughAnother) {
+  SurfaceMesh plates;
+  add_plate(plates, 10, 0);
+  add_plate(plates, 1, 0.05);
+  const std::vector<Vec3> before = plates.vertices;
+  std::vector<Vec3> points;
+  for (double dx : {-0.002, 0.0, 0.002})
+    for (double dy : {-0.002, 0.0, 0.002}) points.push_back({0.5 + dx, 0.5 + dy, 0.07});
+  SnappingOptions options;
+  options.max_move = 0.1;
+  options.data_present = 0.004;
+  options.support_radius = 0.0075;
+  const SnappingStats stats = snap_to_corners_and_data(plates, {}, points, options);
+  EXPECT_EQ(stats.data_points, 0u);
+  EXPECT_EQ(stats.undone, 0u);
+  EXPECT_EQ(plates.vertices, before);
+  // Without the upper plate the same points pull the vertex up.
+  SurfaceMesh lower;
+  add_plate(lower, 10, 0);
+  EXPECT_EQ(snap_to_corners_and_data(lower, {}, points, options).data_points, 1u);
+  EXPECT_NEAR(lower.vertices[5 * 11 + 5][2], 0.07, 1e-12);
+}
