@@ -213,9 +213,10 @@ struct SnappingOptions {
   /// 0: not checked.
   double average_spacing = 0;
   /// With a normal per input point: a vertex farther than data_present from
-  /// its nearest point and from that point's tangent plane moves onto the
-  /// plane, judged like a corner move (a bridge over an undersampled slot, a
-  /// dent into a thin wall: couplingdown 50k, 1.1-1.3 spacings off).
+  /// the tangent disks (one spacing wide) of its eight nearest points moves
+  /// onto the nearest disk, judged like a corner move (a bridge over an
+  /// undersampled slot, a dent into a thin wall: couplingdown 50k, 1.1-1.3
+  /// spacings off).
   std::vector<Vec3> point_normals;
 };
 
@@ -231,9 +232,11 @@ struct SnappingStats {
 /// reach, so the mesh misses the corner and the data by 1.5 spacings.
 /// Each corner (first) and each input point (then) farther than its
 /// `present` distance from the mesh, worst first, takes the nearest vertex
-/// not moved yet, within max_move, unless a facet of that vertex would turn
-/// over or below 10 degrees; moves that make facets intersect are undone
-/// (all of them when eight rounds of undoing leave an intersection).
+/// not moved yet, within max_move, and with normals each vertex away from
+/// the data moves onto it (see point_normals), unless a facet of the vertex
+/// would turn over, fall below 10 degrees or meet another facet;
+/// intersections left are undone, latest move first (all of them when
+/// eight rounds of undoing leave an intersection).
 SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3>& corners, const std::vector<Vec3>& points,
                                        const SnappingOptions& options);
 

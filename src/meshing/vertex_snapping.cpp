@@ -6,7 +6,8 @@
 // spacings), and the corner's vertex is not in the surface mesh; on the top
 // of a wall 1.3 spacings thick the function itself is eroded (its top edge
 // 1.5 spacings below the data). Mesh vertices are moved onto the corners
-// and the data points that the mesh misses.
+// and the data points that the mesh misses, and off-data vertices (bridges
+// over slots, dents into walls thinner than the sampling) onto the data.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -85,6 +86,8 @@ class VertexMover {
  public:
   const SurfaceMesh& mesh() const { return mesh_; }
   const std::vector<std::uint32_t>& faces_of(std::uint32_t v) const { return faces_of_[v]; }
+  /// The vertices moved, in the order they moved.
+  const std::vector<std::uint32_t>& order() const { return order_; }
   /// Distance from q to the facets of v, with v at p.
   double distance_to_ring(std::uint32_t v, const Vec3& p, const Vec3& q) const {
     double best = std::numeric_limits<double>::infinity();
@@ -178,10 +181,6 @@ class VertexMover {
   std::vector<char> moved_;
   std::vector<std::uint32_t> order_;
   double longest_edge_ = 0;  // before any move
-
- public:
-  /// The vertices moved, in the order they moved.
-  const std::vector<std::uint32_t>& order() const { return order_; }
 };
 
 // Worst first, each target takes the nearest of its four nearest vertices
