@@ -45,6 +45,7 @@ bench: data
 	@bench/corpus $(BUILD_DIR)
 	@bench/accuracy_vs_size $(BUILD_DIR)
 	@bench/fig714 $(BUILD_DIR)
+	@bench/sampling_seeds $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)
 	@bench/stereo_study $(BUILD_DIR)
 

@@ -129,7 +129,9 @@ class VertexMover {
   }
 
   /// Whether facets f and g (v at p) meet beyond their shared vertices and
-  /// edge, as Polygon_mesh_processing::self_intersections decides it.
+  /// edge, as Polygon_mesh_processing::self_intersections decides it (CGAL
+  /// 5.5 tests whole meshes only, and orienting a patch of facets as a soup
+  /// splits its pinched vertices, whose facets then seem to intersect).
   bool facets_meet(std::uint32_t f, std::uint32_t g, std::uint32_t v, const Vec3& p) const {
     const Triangle& s = mesh_.faces[f];
     const Triangle& t = mesh_.faces[g];
