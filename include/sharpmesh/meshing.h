@@ -187,11 +187,8 @@ std::size_t flatten_next_to_features(SurfaceMesh& mesh, const std::vector<Polyli
 /// After vertex moves (flattening, snapping): the moved vertices (those
 /// that differ from `before`) of intersecting facets go back, until no
 /// facets intersect or none of theirs moved; if eight rounds still leave an
-/// intersection, every move goes back. With `move_order` (the vertices in
-/// the order they moved), each intersecting pair of facets first gives back
-/// only its latest move, for up to sixteen rounds, so that an earlier move
-/// is not undone for a later neighbour's. Returns the number of vertices put back.
-std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before, const std::vector<std::uint32_t>& move_order = {});
+/// intersection, every move goes back. Returns the number of vertices put back.
+std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before);
 
 /// Snapping (beyond the thesis): mesh vertices moved onto the corners and
 /// data points the mesh misses. Distances in data units.
@@ -234,9 +231,9 @@ struct SnappingStats {
 /// `present` distance from the mesh, worst first, takes the nearest vertex
 /// not moved yet, within max_move, and with normals each vertex away from
 /// the data moves onto it (see point_normals), unless a facet of the vertex
-/// would turn over, fall below 10 degrees or meet another facet;
-/// intersections left are undone, latest move first (all of them when
-/// eight rounds of undoing leave an intersection).
+/// would turn over, fall below 10 degrees or meet another facet; any
+/// intersection left is undone (all moves when eight rounds of undoing
+/// leave one).
 SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3>& corners, const std::vector<Vec3>& points,
                                        const SnappingOptions& options);
 

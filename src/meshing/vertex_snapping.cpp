@@ -62,7 +62,6 @@ class VertexMover {
     if (accept && !accept(v, to)) return false;
     mesh_.vertices[v] = to;
     moved_[v] = 1;
-    order_.push_back(v);
     return true;
   }
 
@@ -86,8 +85,6 @@ class VertexMover {
  public:
   const SurfaceMesh& mesh() const { return mesh_; }
   const std::vector<std::uint32_t>& faces_of(std::uint32_t v) const { return faces_of_[v]; }
-  /// The vertices moved, in the order they moved.
-  const std::vector<std::uint32_t>& order() const { return order_; }
   /// Distance from q to the facets of v, with v at p.
   double distance_to_ring(std::uint32_t v, const Vec3& p, const Vec3& q) const {
     double best = std::numeric_limits<double>::infinity();
@@ -181,7 +178,6 @@ class VertexMover {
   SurfaceMesh& mesh_;
   std::vector<std::vector<std::uint32_t>> faces_of_;
   std::vector<char> moved_;
-  std::vector<std::uint32_t> order_;
   double longest_edge_ = 0;  // before any move
 };
 
@@ -275,41 +271,15 @@ std::size_t snap_off_data_vertices(VertexMover& mover, const detail::KnnIndex& d
 
 }  // namespace
 
-std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before, const std::vector<std::uint32_t>& move_order) {
+std::size_t undo_intersecting_moves(SurfaceMesh& mesh, const std::vector<Vec3>& before) {
   if (before.size() != mesh.vertices.size()) throw InvalidArgument("undo_intersecting_moves: vertex counts differ");
-  std::vector<std::size_t> rank(mesh.vertices.size(), 0);
-  for (std::size_t k = 0; k < move_order.size(); ++k)
-    if (move_order[k] >= rank.size()) throw InvalidArgument("undo_intersecting_moves: vertex index out of range");
-    else rank[move_order[k]] = k + 1;
   std::size_t undone = 0;
-  auto moved = [&](std::uint32_t v) { return !(mesh.vertices[v] == before[v]); };
   auto restore = [&](std::uint32_t v) {
-    if (!moved(v)) return false;
+    if (mesh.vertices[v] == before[v]) return false;
     mesh.vertices[v] = before[v];
     ++undone;
     return true;
   };
-  // With an order, each intersecting pair first loses only its last move.
-  const int ordered_rounds = move_order.empty() ? 0 : 16;
-  // A pair with a vertex put back in this round waits for the next check.
-  std::vector<int> put_back_in(mesh.vertices.size(), -1);
-  for (int round = 0; round < ordered_rounds; ++round) {
-    bool restored = false;
-    for (const auto& [a, b] : self_intersecting_faces(mesh)) {
-      std::uint32_t last = 0;
-      bool any = false, waits = false;
-      for (std::uint32_t f : {a, b})
-        for (std::uint32_t v : mesh.faces[f]) {
-          waits = waits || put_back_in[v] == round;
-          if (moved(v) && (!any || rank[v] > rank[last])) last = v, any = true;
-        }
-      if (!any || waits) continue;
-      restore(last);
-      put_back_in[last] = round;
-      restored = true;
-    }
-    if (!restored) break;
-  }
   for (int round = 0;; ++round) {
     bool restored = false;
     for (const auto& [a, b] : self_intersecting_faces(mesh))
@@ -380,7 +350,7 @@ SnappingStats snap_to_corners_and_data(SurfaceMesh& mesh, const std::vector<Vec3
     if (corners_moved + data_moved + vertices_moved == 0) break;
   }
   if (stats.corners + stats.data_points + stats.off_data_vertices == 0) return stats;
-  stats.undone = undo_intersecting_moves(mesh, before, mover.order());
+  stats.undone = undo_intersecting_moves(mesh, before);
   return stats;
 }
 

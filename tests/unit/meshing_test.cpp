@@ -461,6 +461,15 @@ std::vector<Vec3> plate_points(std::size_t count, unsigned seed) {
   return points;
 }
 
+// Snapping distances for the unit plate sampled by plate_points(40000).
+SnappingOptions plate_snapping() {
+  SnappingOptions options;
+  options.max_move = 0.1;
+  options.data_present = 0.004;
+  options.support_radius = 0.0075;
+  return options;
+}
+
 }  // namespace
 
 // A junction misplaced 0.06 beyond the edge of a sampled plate (as into a
@@ -472,11 +481,8 @@ TEST(Snapping, RefusesACornerThatWouldStretchTheMeshWhereThereIsNoData) {
   SurfaceMesh plate;
   add_plate(plate, n, 0);
   const std::vector<Vec3> points = plate_points(40000, 3);
-  SnappingOptions options;
-  options.max_move = 0.1;
+  SnappingOptions options = plate_snapping();
   options.corner_present = 0.001;
-  options.data_present = 0.004;
-  options.support_radius = 0.0075;
   options.points_are_targets = false;
   const Vec3 misplaced{1.06, 0.5, 0};
   SurfaceMesh data_only = plate;
@@ -531,10 +537,7 @@ TEST(Snapping, MovesAVertexAwayFromTheDataOntoItsTangentPlane) {
   const std::vector<Vec3> points = plate_points(40000, 5);
   const std::size_t centre = 5 * (n + 1) + 5;
   plate.vertices[centre] = {0.5, 0.5, -0.05};
-  SnappingOptions options;
-  options.max_move = 0.1;
-  options.data_present = 0.004;
-  options.support_radius = 0.0075;
+  SnappingOptions options = plate_snapping();
   options.points_are_targets = false;
   options.average_spacing = 0.005;
   SurfaceMesh without_normals = plate;
@@ -551,30 +554,6 @@ TEST(Snapping, MovesAVertexAwayFromTheDataOntoItsTangentPlane) {
   EXPECT_THROW(snap_to_corners_and_data(with_normals, {}, points, options), InvalidArgument);
 }
 
-// Two plates 0.05 apart; a vertex of the lower one moved up through the
-// upper one, whose vertex above it slid sideways (harmless) before: in move
-// order only the later, intersecting move goes back; without it both do.
-TEST(Snapping, UndoGivesBackTheLatestMoveOfAnIntersectingPairFirst) {
-  const int n = 10;
-  SurfaceMesh plates;
-  add_plate(plates, n, 0);
-  add_plate(plates, n, 0.05);
-  const std::vector<Vec3> before = plates.vertices;
-  const std::uint32_t lower = 5 * (n + 1) + 5, upper = lower + (n + 1) * (n + 1);
-  plates.vertices[upper] = {0.51, 0.5, 0.05};
-  plates.vertices[lower] = {0.5, 0.5, 0.1};
-  ASSERT_FALSE(self_intersecting_faces(plates).empty());
-  SurfaceMesh ordered = plates;
-  EXPECT_EQ(undo_intersecting_moves(ordered, before, {upper, lower}), 1u);
-  EXPECT_EQ(ordered.vertices[lower], before[lower]);
-  EXPECT_EQ(ordered.vertices[upper], plates.vertices[upper]);
-  EXPECT_TRUE(self_intersecting_faces(ordered).empty());
-  SurfaceMesh unordered = plates;
-  EXPECT_EQ(undo_intersecting_moves(unordered, before), 2u);
-  EXPECT_EQ(unordered.vertices, before);
-  EXPECT_THROW(undo_intersecting_moves(unordered, before, {std::uint32_t(before.size())}), InvalidArgument);
-}
-
 // Points 0.02 above a plate of two large facets at z = 0.05, over a fine
 // plate at z = 0: the only vertex within reach is the fine plate's, and
 // moving it onto them would pierce the upper plate. Refused at once, so
@@ -587,10 +566,7 @@ TEST(Snapping, RefusesAMoveThatWouldPushAFacetThroughAnother) {
   std::vector<Vec3> points;
   for (double dx : {-0.002, 0.0, 0.002})
     for (double dy : {-0.002, 0.0, 0.002}) points.push_back({0.5 + dx, 0.5 + dy, 0.07});
-  SnappingOptions options;
-  options.max_move = 0.1;
-  options.data_present = 0.004;
-  options.support_radius = 0.0075;
+  const SnappingOptions options = plate_snapping();
   const SnappingStats stats = snap_to_corners_and_data(plates, {}, points, options);
   EXPECT_EQ(stats.data_points, 0u);
   EXPECT_EQ(stats.undone, 0u);
