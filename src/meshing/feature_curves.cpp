@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "core/fold_backs.h"
 #include "pointset/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
@@ -33,26 +34,6 @@ std::map<Vec3, Vec3> weld(const std::vector<Vec3>& points, double tolerance) {
     welded[p] = to;
   }
   return welded;
-}
-
-// A polyline that turns back on itself (by more than 120 degrees) overlaps
-// itself, which CGAL's protection cannot take (couplingdown 50k, sampling
-// seed 9: a crash in its ball removal). Extracted polylines do that next to
-// a junction placed between their first two points: the turning point goes
-// (unless it is another polyline's end), until none is left.
-void remove_fold_backs(Polyline& line, const std::set<Vec3>& ends) {
-  for (bool removed = true; removed && line.size() >= 3;) {
-    removed = false;
-    for (std::size_t i = 1; i + 1 < line.size(); ++i) {
-      const Vec3 in = line[i] - line[i - 1], out = line[i + 1] - line[i];
-      if (dot(in, out) < -0.5 * norm(in) * norm(out) && !ends.count(line[i])) {
-        line.erase(line.begin() + static_cast<std::ptrdiff_t>(i));
-        if (line[i - 1] == line[i]) line.erase(line.begin() + static_cast<std::ptrdiff_t>(i));
-        removed = true;
-        break;
-      }
-    }
-  }
 }
 
 // CGAL's protection fails on overlapping curves: each one once, in either direction.
@@ -86,7 +67,7 @@ std::vector<Polyline> curves_for_protection(const std::vector<Polyline>& polylin
       const Vec3 q = weld_to.at(p);
       if (points.empty() || points.back() != q) points.push_back(q);
     }
-    remove_fold_backs(points, ends);
+    detail::remove_fold_backs(points, ends);  // given polylines can fold back too
     if (points.size() >= 2 && !contains(welded, points)) welded.push_back(std::move(points));
   }
   // Corners: open ends, and points where other than two segments meet.

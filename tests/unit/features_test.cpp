@@ -403,6 +403,20 @@ TEST(FeatureGraph, EndsOfParallelEdgesSideBySideMeetNoJunction) {
   EXPECT_EQ(junctions_near(unbounded, {-2, 0, 1.5}, 1, 2), 1u);
 }
 
+// An edge traced 6 units past the corner where it meets two others: its end
+// moves back to the junction, and the vertex it passed goes (it used to stay,
+// and the polyline folded back on itself: 18 of couplingdown 50k's 104).
+TEST(FeatureGraph, AnEdgeTracedPastItsJunctionDoesNotFoldBack) {
+  const std::vector<detail::TracedPolyline> lines = {straight({-40, 0, 0}, {6, 0, 0}), straight({0, -40, 0}, {0, -2, 0}),
+                                                     straight({0, 0, 40}, {0, 0, 2})};
+  const FeatureGraph graph = detail::connect_polylines(lines, 5, {}, 0, 8);
+  ASSERT_EQ(junctions_near(graph, {0, 0, 0}, 0.5, 3), 1u);
+  ASSERT_EQ(graph.polylines.size(), 3u);
+  for (const Polyline& line : graph.polylines)
+    for (std::size_t i = 1; i + 1 < line.size(); ++i)
+      EXPECT_GT(dot(line[i] - line[i - 1], line[i + 1] - line[i]), 0) << "turns back at " << line[i][0] << " " << line[i][1];
+}
+
 // A closed edge traced in two arcs: the two pieces join at one gap and the
 // loop closes at the other (it used to be dropped as a stub with both ends
 // on one junction: spool 50k lost a rim circle).
