@@ -18,6 +18,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
           {"protecting_balls", m.protecting_balls},
           {"enlarged_balls", m.enlarged_balls},
           {"protection_rounds_exhausted", m.protection_rounds_exhausted},
+          {"protection_stopped", m.protection_stopped},
           {"max_gap", length_json(m.max_gap, diagonal)},
           {"protected_segments", m.protected_segments},
           {"represented_segments", m.represented_segments},
@@ -90,6 +91,10 @@ Command add_reconstruct(CLI::App& app) {
                 "with normals against it (by default their normals and those around them are flipped, Poisson solved and meshed again, and "
                 "the new mesh is kept when it leaves a quarter fewer such points, no more off in all and none farther)");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
+      ->capture_default_str();
+  sub->add_option("--protection-time-limit", o->reconstruct.protection_time_limit,
+                  "Seconds CGAL's protection of the feature polylines may take; past them the surface is meshed without it and the "
+                  "report says so (0: no limit)")
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
@@ -166,7 +171,7 @@ Command add_reconstruct(CLI::App& app) {
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
           {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"poisson_screening", options.poisson_screening}, {"poisson_screening_noisy", options.poisson_screening_noisy}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"data_fit_retry", options.refit_off_data},
-          {"max_facets", options.max_facets}, {"seed", options.seed}}},
+          {"max_facets", options.max_facets}, {"protection_time_limit_s", options.protection_time_limit}, {"seed", options.seed}}},
         {"derived",
          {{"average_spacing", length_json(result.average_spacing, diagonal)},
           {"d_prime", length_json(result.d_prime, diagonal)},
@@ -201,6 +206,9 @@ Command add_reconstruct(CLI::App& app) {
     report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}, {"runaway", result.meshing.refinement_runaway}};
     if (result.meshing.refinement_runaway && !common->quiet)
       std::fprintf(stderr, "reconstruct: warning: refinement was still adding vertices long after the expected count and was ended; check the mesh's topology\n");
+    if (result.meshing.protection_stopped && !common->quiet)
+      std::fprintf(stderr, "reconstruct: warning: the protection of the feature polylines ran past %g s and was stopped; the mesh was made without it "
+                           "(raise --protection-time-limit)\n", options.protection_time_limit);
     if (result.meshing.refinement_stalled && !common->quiet)
       std::fprintf(stderr, "reconstruct: warning: refinement stopped adding vertices and was ended early; check the mesh's topology\n");
     if (!common->quiet && result.normal_source == "input (re-oriented)")

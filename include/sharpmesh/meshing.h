@@ -94,6 +94,13 @@ struct ImplicitMeshingOptions {
   /// inserted densest first.
   std::vector<double> data_seed_spacings;
   std::uint32_t seed = 0;
+  /// Seconds CGAL's feature protection may take (0: no limit). Past them it
+  /// is stopped and the surface meshed without protection, every polyline
+  /// reported as uncovered: a safety net for a curve that CGAL walks for
+  /// ever without inserting anything (loop ends that miss each other by a
+  /// rounding error did, before they were welded). It takes 0.1-3 s on
+  /// models of 50k-200k points.
+  double protection_time_limit = 120;
   void check() const;
 };
 
@@ -106,6 +113,9 @@ struct ImplicitMeshingResult {
   /// CGAL's protection stopped shrinking balls after its 29 rounds (balls of
   /// two polylines that keep intersecting; left as they were).
   bool protection_rounds_exhausted = false;
+  /// The protection ran past protection_time_limit and was stopped; the mesh
+  /// was made without protection.
+  bool protection_stopped = false;
   std::size_t protected_segments = 0;    ///< segments between consecutive balls
   std::size_t represented_segments = 0;  ///< of those, edges of the output mesh
   double max_gap = 0;                    ///< largest polyline-to-surface distance measured at a ball

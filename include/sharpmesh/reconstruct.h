@@ -98,6 +98,9 @@ struct ReconstructOptions {
   /// off in all and none farther (beyond the thesis; with repair_normal_signs).
   bool refit_off_data = true;
   std::size_t max_facets = 5'000'000;
+  /// Seconds the feature protection may take before the surface is meshed
+  /// without it (ImplicitMeshingOptions::protection_time_limit; 0: no limit).
+  double protection_time_limit = 120;
   std::uint32_t seed = 0;
   void check(std::size_t n) const;
 };

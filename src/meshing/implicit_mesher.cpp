@@ -30,6 +30,7 @@
 #include <unordered_set>
 
 #include "eval/mesh_graph.h"
+#include "meshing/deadline.h"
 #include "pointset/cgal_bridge.h"
 #include "sharpmesh/meshing.h"
 
@@ -73,7 +74,11 @@ struct BallSizing {
       return -1;
     return distance(p, q);
   }
+  /// Set for the protection: each query checks its time limit.
+  const detail::Deadline* deadline = nullptr;
+
   double operator()(const detail::Point3& p, int, const Domain::Index&) const {
+    if (deadline) deadline->expired();
     if (!protection.adapt_to_gap) return protection.ball_radius;
     const double gap = gap_at(detail::from_cgal(p));
     if (gap < 0) return protection.ball_radius;
@@ -444,6 +449,8 @@ void ImplicitMeshingOptions::check() const {
     throw InvalidArgument("data seed spacings must be empty or one per seed");
   for (double s : data_seed_spacings)
     if (!(s > 0) || !std::isfinite(s)) throw InvalidArgument("data seed spacings must be positive (got " + format_number(s) + ")");
+  if (!(protection_time_limit >= 0) || !std::isfinite(protection_time_limit))
+    throw InvalidArgument("protection time limit must be non-negative seconds (got " + format_number(protection_time_limit) + ")");
   if (!features.polylines.empty()) {
     if (!(features.ball_radius > 0) || !std::isfinite(features.ball_radius))
       throw InvalidArgument("protecting-ball radius must be positive (got " + format_number(features.ball_radius) + ")");
@@ -463,6 +470,9 @@ double estimate_facet_count(double area, const RefinementCriteria& criteria) {
 }
 
 namespace {
+
+/// Thrown when the feature protection ran past its time limit.
+struct ProtectionStopped {};
 
 /// One refinement; `runaway_spot` is where a run-away refinement piled its
 /// vertices, when the check on them stopped it; `stalled` the polyline
@@ -533,8 +543,12 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
     // Balls that must shrink below this are kept (CGAL's "special balls")
     // instead of shrinking forever where two extracted polylines cross.
     const double minimal_radius = 0.05 * options.features.ball_radius;
-    CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, sizing, minimal_radius,
-                                                                                max_vertices, &error);
+    std::atomic<bool> stop{false};
+    const detail::Deadline deadline(stop, options.protection_time_limit);
+    BallSizing timed_sizing = sizing;
+    timed_sizing.deadline = &deadline;
+    CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, timed_sizing, minimal_radius,
+                                                                                max_vertices, &error, &stop);
     {
       // CGAL writes "features protection has reached maximal number of
       // loops. It might result in a crash." to std::cerr when its 29 rounds
@@ -560,6 +574,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
       }
       if (messages.find_first_not_of(" \n") != std::string::npos) std::cerr << messages;
     }
+    if (stop.load()) throw ProtectionStopped{};
     for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v) {
       if (c3t3.in_dimension(v) > 1) continue;
       ++result.protecting_balls;
@@ -714,6 +729,7 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
   };
   std::vector<Vec3> stalled;
   bool rescue_stalled = true;
+  bool protection_stopped = false;
   for (int retries = 0;; ++retries) {
     std::string what;
     const bool last = retries == kMaxRetries || attempt.features.polylines.empty();
@@ -740,11 +756,17 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
         }
       }
       result.mesher_retries = static_cast<std::size_t>(retries);
+      result.protection_stopped = protection_stopped;
       if (!result.refinement_runaway) result.runaway_stopped_at = runaway_stopped_at;
       result.uncovered.insert(result.uncovered.end(), dropped.begin(), dropped.end());
       return result;
     } catch (const CGAL::Failure_exception& e) {
       what = !e.message().empty() ? e.message() : e.expression();
+    } catch (const ProtectionStopped&) {
+      protection_stopped = true;
+      drop_all();
+      report_progress(progress, "refinement (again, without protection: it ran past its time limit)", 0.0);
+      continue;
     }
     if (last) {
       const std::string line = what.substr(0, what.find('\n'));

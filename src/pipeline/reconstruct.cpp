@@ -27,6 +27,8 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
 }  // namespace
 
 void ReconstructOptions::check(std::size_t n) const {
+  if (!(protection_time_limit >= 0) || !std::isfinite(protection_time_limit))
+    throw InvalidArgument("protection time limit must be non-negative seconds (got " + format_number(protection_time_limit) + ")");
   if (!(delta > 0) || !std::isfinite(delta))
     throw InvalidArgument("delta must be positive (got " + format_number(delta) + ")");
   if (!(ball_radius > 0 && ball_radius <= 2))
@@ -412,6 +414,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     ImplicitMeshingOptions meshing;
     meshing.criteria = out.criteria;
     meshing.max_facets = options.max_facets;
+    meshing.protection_time_limit = options.protection_time_limit;
     meshing.expected_facets = estimate;
     meshing.seed = options.seed;
     meshing.features.polylines = out.features.graph.polylines;

@@ -60,6 +60,34 @@ class StepAtX : public ImplicitSurface {
   Vec3 inside_point() const override { return {1, 0, 0}; }
 };
 
+/// The cube [-1, 1]^3 (a signed distance).
+class Cube : public ImplicitSurface {
+ public:
+  double value(const Vec3& p) const override {
+    const Vec3 q{std::abs(p[0]) - 1, std::abs(p[1]) - 1, std::abs(p[2]) - 1};
+    const Vec3 outside{std::max(q[0], 0.0), std::max(q[1], 0.0), std::max(q[2], 0.0)};
+    return norm(outside) + std::min(std::max(q[0], std::max(q[1], q[2])), 0.0);
+  }
+  Vec3 bounding_center() const override { return {0, 0, 0}; }
+  double bounding_radius() const override { return 1.8; }
+  Vec3 inside_point() const override { return {0, 0, 0}; }
+};
+
+/// The cube's 12 edges, each from corner to corner.
+std::vector<Polyline> cube_edges() {
+  std::vector<Polyline> edges;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double a : {-1.0, 1.0})
+      for (double b : {-1.0, 1.0}) {
+        Vec3 from{0, 0, 0}, to{0, 0, 0};
+        from[axis] = -1, to[axis] = 1;
+        from[(axis + 1) % 3] = to[(axis + 1) % 3] = a;
+        from[(axis + 2) % 3] = to[(axis + 2) % 3] = b;
+        edges.push_back({from, to});
+      }
+  return edges;
+}
+
 double farthest_x(const SurfaceMesh& mesh) {
   double x = -1e9;
   for (const Vec3& v : mesh.vertices) x = std::max(x, v[0]);
@@ -127,6 +155,34 @@ TEST(ImplicitMeshing, DataSeedsKeepAFinThinnerThanTheFacets) {
   EXPECT_TRUE(t.closed());
   EXPECT_TRUE(t.manifold());
   EXPECT_FALSE(t.self_intersecting);
+}
+
+// A protection that runs past its time limit (a stand-in for a curve CGAL
+// walks for ever) is stopped; the cube is meshed without it, its edges are
+// reported as uncovered, and the mesh is still closed and manifold.
+TEST(ImplicitMeshing, ProtectionPastItsTimeLimitIsStoppedAndReported) {
+  const Cube surface;
+  ImplicitMeshingOptions options;
+  options.criteria.edge_length = 0.5;
+  options.criteria.distance = 0.05;
+  options.features.polylines = cube_edges();
+  options.features.ball_radius = 0.15;
+  const ImplicitMeshingResult protected_cube = mesh_implicit_surface(surface, options);
+  EXPECT_FALSE(protected_cube.protection_stopped);
+  EXPECT_GT(protected_cube.protected_segments, 12u);
+  EXPECT_EQ(protected_cube.represented_segments, protected_cube.protected_segments);
+
+  options.protection_time_limit = 1e-9;  // up at the first ball
+  const ImplicitMeshingResult stopped = mesh_implicit_surface(surface, options);
+  EXPECT_TRUE(stopped.protection_stopped);
+  EXPECT_EQ(stopped.protected_segments, 0u);
+  EXPECT_EQ(stopped.uncovered.size(), 12u);
+  const TopologyReport t = check_topology(stopped.mesh);
+  EXPECT_TRUE(t.closed());
+  EXPECT_TRUE(t.manifold());
+
+  options.protection_time_limit = -1;
+  EXPECT_THROW(mesh_implicit_surface(surface, options), InvalidArgument);
 }
 
 TEST(ImplicitMeshing, RejectsNonFiniteDataSeeds) {
