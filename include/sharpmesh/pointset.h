@@ -133,6 +133,14 @@ std::size_t orient_normals_mst(PointSet& points, const NormalOrientationOptions&
 /// its highest point, normal up); returns the number of components.
 std::size_t orient_normals_tangent_mst(PointSet& points, int k = 18, const Progress& progress = {});
 
+/// Beyond the thesis: after an MST orientation, flips the patches of
+/// normals that the creases around them show inverted (an MST inverts a
+/// whole face beyond an acute crease, whose consistent normals have a
+/// negative dot product). `unreliable`: points whose normal line is
+/// uncertain (crease points); they do not vote and follow their neighbours.
+/// `spacing`: the average spacing. Returns the number of normals flipped.
+std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uint32_t>& unreliable, double spacing, int k = 18);
+
 /// The toolbox as one pipeline, in the order of the thesis's Fig. A.2:
 /// outliers, simplification, smoothing, normals, orientation. A step runs
 /// when its option is set.

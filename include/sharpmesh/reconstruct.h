@@ -124,6 +124,7 @@ struct ReconstructResult {
   /// CVCM normals replaced by jet normals where the convolved VCM is
   /// isotropic (lambda0/lambda1 < 20: thin walls, creases, corners).
   std::size_t isotropic_cvcm_normals = 0;
+  std::size_t patch_flipped_normals = 0;  ///< normals of patches the creases showed inverted after the MST (repair_inverted_patches)
   std::size_t sharpened_normals = 0;  ///< isotropic-CVCM normals replaced by crease-aware ones (shifted planes)
   std::size_t sign_repaired_normals = 0;  ///< normal flips kept by the sign repair against the Poisson function
   FeatureResult features;            ///< when extracted (graph only when given)

@@ -18,6 +18,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["normal_source"] = r.normal_source;
   counts["input_normal_agreement"] = r.input_normal_agreement;
   counts["isotropic_cvcm_normals"] = r.isotropic_cvcm_normals;
+  counts["patch_flipped_normals"] = r.patch_flipped_normals;
   counts["sharpened_normals"] = r.sharpened_normals;
   counts["sign_repaired_normals"] = r.sign_repaired_normals;
   counts["vertices"] = r.mesh.vertices.size();

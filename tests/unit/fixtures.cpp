@@ -31,6 +31,13 @@ SurfaceMesh cube_mesh(double h) {
   return m;
 }
 
+SurfaceMesh tetrahedron_mesh() {
+  SurfaceMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return m;
+}
+
 SurfaceMesh chamfered_cube_mesh(double c) {
   SurfaceMesh m;
   // The pentagon A B C1 C2 D at z = -1 (vertices 0-4) and z = 1 (5-9).

@@ -19,6 +19,10 @@ SurfaceMesh chamfered_cube_mesh(double c);
 /// The prism z in [-1, 1] over the hexagon (-1,-1) (1,-1) (1,1) (0,1) (0,1+h)
 /// (-1,1+h): a step h high, a concave and a convex 90-degree edge h apart.
 SurfaceMesh stepped_prism_mesh(double h);
+/// The tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1), outward-oriented: three
+/// 90-degree edges at the origin and three acute ones (54.7 degrees) around
+/// the slanted face.
+SurfaceMesh tetrahedron_mesh();
 /// Unit sphere: an icosahedron subdivided `levels` times, projected onto the sphere.
 SurfaceMesh sphere_mesh(int levels = 3, double radius = 1.0);
 /// Closed cylinder of radius r, height h, around z, with `segments` sides.

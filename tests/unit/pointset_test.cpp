@@ -312,6 +312,41 @@ TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
   std::printf("flipped normals on a thin slab: tangent MST %.4f, CGAL MST %.4f\n", ours_flipped, cgal_flipped);
 }
 
+// The slanted face of a tetrahedron inverted, as an MST leaves it when the
+// crease points' normals turn the short way across its acute edges: the
+// crease votes flip it back; a consistent cube and tetrahedron stay as they are.
+TEST(Normals, InvertedPatchBeyondAnAcuteCreaseIsFlippedBack) {
+  const PointSet truth = test::sample_with_normals(test::tetrahedron_mesh(), 20000, 3);
+  const double spacing = average_spacing(truth);
+  std::vector<std::uint32_t> creases;  // within 2 spacings of an edge: no reliable normal line
+  for (std::uint32_t i = 0; i < truth.size(); ++i) {
+    const Vec3& p = truth.points[i];
+    const double planes[4] = {p[0], p[1], p[2], (1 - p[0] - p[1] - p[2]) / std::sqrt(3.0)};
+    int near = 0;
+    for (double d : planes) near += std::abs(d) < 2 * spacing;
+    if (near >= 2) creases.push_back(i);
+  }
+  PointSet inverted = truth;
+  std::size_t slanted = 0;
+  for (std::uint32_t i = 0; i < inverted.size(); ++i)
+    if (dot(truth.normals[i], Vec3{1, 1, 1}) > 1.5) inverted.normals[i] = -1.0 * inverted.normals[i], ++slanted;
+  ASSERT_GT(slanted, 4000u);
+  PointSet repaired = inverted;
+  const std::size_t flips = repair_inverted_patches(repaired, creases, spacing);
+  EXPECT_GE(flips, slanted - creases.size());
+  std::vector<char> crease(truth.size(), 0);
+  for (std::uint32_t i : creases) crease[i] = 1;
+  std::size_t wrong = 0;  // crease points follow the majority of their neighbours, which may lie on another face
+  for (std::uint32_t i = 0; i < truth.size(); ++i) wrong += !crease[i] && dot(repaired.normals[i], truth.normals[i]) < 0;
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_LT(flipped_fraction(repaired, truth), 0.03);
+
+  PointSet consistent = truth;
+  EXPECT_EQ(repair_inverted_patches(consistent, creases, spacing), 0u);
+  PointSet cube = test::sample_with_normals(test::cube_mesh(1.0), 20000, 3);
+  EXPECT_EQ(repair_inverted_patches(cube, {}, average_spacing(cube)), 0u);
+}
+
 TEST(Clean, RunsTheStepsOfFigureA2InOrder) {
   PointSet ps = sphere_points(5000);
   for (int i = 0; i < 10; ++i)  // outliers 2 radii off the unit sphere, in 10 directions

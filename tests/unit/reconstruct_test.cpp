@@ -130,6 +130,17 @@ TEST(FeaturePreservingReconstruction, CubeKeepsTwelveSharpEdgesAndEightCorners) 
   EXPECT_LT(2 * compare_meshes(r.mesh, cube, d).hausdorff, compare_meshes(pif.mesh, cube, d).hausdorff);
 }
 
+// A tetrahedron's acute edges: the MST inverted its slanted face, and Poisson
+// then closed the surface away from the data (an open, trimmed mesh 2 U off
+// at 50k points). With the crease votes it is closed and close.
+TEST(FeaturePreservingReconstruction, TetrahedronWithAcuteEdgesGivesAClosedMesh) {
+  const SurfaceMesh tetrahedron = test::tetrahedron_mesh();
+  const ReconstructResult r = reconstruct(sample(tetrahedron, 30000), {});
+  EXPECT_EQ(r.boundary_edges, 0u);
+  EXPECT_FALSE(r.restricted);
+  expect_valid_and_close(r.mesh, tetrahedron, 0.012);
+}
+
 // Given polylines are protected as they are; a polyline far off the surface
 // is reported as an uncovered gap, not meshed into a spike.
 TEST(FeaturePreservingReconstruction, GivenPolylinesAndUncoveredGaps) {
