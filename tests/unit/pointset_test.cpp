@@ -347,6 +347,38 @@ TEST(Normals, InvertedPatchBeyondAnAcuteCreaseIsFlippedBack) {
   EXPECT_EQ(repair_inverted_patches(cube, {}, average_spacing(cube)), 0u);
 }
 
+// Half an octahedron inverted (its four upper faces, as an MST that crossed
+// one crease wrongly leaves them): each inverted face has two inverted
+// neighbours that agree with it and one that does not, so no face is
+// outvoted on its own; the spanning tree over the crease votes repairs them.
+TEST(Normals, InvertedHalfOfAnOctahedronIsFlippedBack) {
+  SurfaceMesh octahedron;
+  octahedron.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (std::uint32_t x : {0u, 1u})
+    for (std::uint32_t y : {2u, 3u})
+      for (std::uint32_t z : {4u, 5u}) {
+        const bool outward = (x == 0) == (y == 2) == (z == 4);  // counter-clockwise seen from outside
+        octahedron.faces.push_back(outward ? std::array<std::uint32_t, 3>{x, y, z} : std::array<std::uint32_t, 3>{x, z, y});
+      }
+  const PointSet truth = test::sample_with_normals(octahedron, 20000, 5);
+  for (std::uint32_t i = 0; i < truth.size(); ++i) ASSERT_GT(dot(truth.normals[i], truth.points[i]), 0);  // outward
+  const double spacing = average_spacing(truth);
+  std::vector<std::uint32_t> creases;
+  for (std::uint32_t i = 0; i < truth.size(); ++i) {
+    const Vec3& p = truth.points[i];
+    if (std::min({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}) < spacing) creases.push_back(i);
+  }
+  PointSet inverted = truth;
+  for (std::uint32_t i = 0; i < inverted.size(); ++i)
+    if (truth.points[i][2] > 0) inverted.normals[i] = -1.0 * inverted.normals[i];
+  EXPECT_GT(repair_inverted_patches(inverted, creases, spacing), 0u);
+  std::vector<char> crease(truth.size(), 0);
+  for (std::uint32_t i : creases) crease[i] = 1;
+  std::size_t wrong = 0;
+  for (std::uint32_t i = 0; i < truth.size(); ++i) wrong += !crease[i] && dot(inverted.normals[i], truth.normals[i]) < 0;
+  EXPECT_EQ(wrong, 0u);
+}
+
 TEST(Clean, RunsTheStepsOfFigureA2InOrder) {
   PointSet ps = sphere_points(5000);
   for (int i = 0; i < 10; ++i)  // outliers 2 radii off the unit sphere, in 10 directions
