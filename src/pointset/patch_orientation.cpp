@@ -31,6 +31,7 @@
 #include <queue>
 #include <tuple>
 
+#include <boost/pending/disjoint_sets.hpp>
 #include <tbb/parallel_for.h>
 
 #include "pointset/knn.h"
@@ -50,16 +51,6 @@ constexpr double kAgainst = 0.5;
 // chords (fandisk 200k: 14 chords summing to 0.1 flipped a face of 15k
 // points). The tetrahedron's acute creases give about 50 per spacing.
 constexpr double kMinVote = 5;
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
 
 /// Largest |u . n| over the two normals, u the unit chord from a to b.
 double steepness(const Vec3& u, const Vec3& na, const Vec3& nb) { return std::max(std::abs(dot(u, na)), std::abs(dot(u, nb))); }
@@ -84,23 +75,23 @@ std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uin
     std::vector<double> squared;
     index.nearest(p[i], k + 1, neighbours[i], squared);
   });
-  auto tangent_unit = [&](std::uint32_t i, std::uint32_t j, Vec3& u) {
+  auto unit_chord = [&](std::uint32_t i, std::uint32_t j, Vec3& u) {
     const double length = distance(p[i], p[j]);
     if (!(length > 0)) return false;
     u = (1.0 / length) * (p[j] - p[i]);
     return true;
   };
-  UnionFind patches(n);
+  boost::disjoint_sets_with_storage<> patches(n);
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!reliable[i]) continue;
     for (std::uint32_t j : neighbours[i]) {
       Vec3 u;
-      if (j == i || !reliable[j] || !tangent_unit(i, j, u)) continue;
-      if (dot(normal[i], normal[j]) > kSamePatchCos && steepness(u, normal[i], normal[j]) < kMaxTangentSine) patches.join(i, j);
+      if (j == i || !reliable[j] || !unit_chord(i, j, u)) continue;
+      if (dot(normal[i], normal[j]) > kSamePatchCos && steepness(u, normal[i], normal[j]) < kMaxTangentSine) patches.union_set(i, j);
     }
   }
   std::vector<std::uint32_t> patch(n);
-  for (std::uint32_t i = 0; i < n; ++i) patch[i] = patches.find(i);
+  for (std::uint32_t i = 0; i < n; ++i) patch[i] = static_cast<std::uint32_t>(patches.find_set(i));
   // Only points next to another patch or a crease point start chords.
   std::vector<char> border(n, 0);
   for (std::uint32_t i = 0; i < n; ++i)
@@ -118,7 +109,7 @@ std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uin
     for (std::uint32_t j : near) {
       Vec3 u;
       if (!reliable[j] || patch[i] == patch[j] || (border[j] && j <= i)) continue;
-      if (std::abs(dot(normal[i], normal[j])) >= kCreaseCos || !tangent_unit(i, j, u)) continue;
+      if (std::abs(dot(normal[i], normal[j])) >= kCreaseCos || !unit_chord(i, j, u)) continue;
       chord_votes[i].push_back({std::minmax(patch[i], patch[j]), -dot(u, normal[i]) * dot(u, normal[j])});
     }
   });
