@@ -98,8 +98,8 @@ struct ImplicitMeshingOptions {
   /// is stopped and the surface meshed without protection, every polyline
   /// reported as uncovered: a safety net for a curve that CGAL walks for
   /// ever without inserting anything (loop ends that miss each other by a
-  /// rounding error did, before they were welded). It takes 0.1-3 s on
-  /// models of 50k-200k points.
+  /// rounding error did, before they were welded). The whole refinement,
+  /// protection included, takes 3-4 s on fandisk at 200k points.
   double protection_time_limit = 120;
   void check() const;
 };
