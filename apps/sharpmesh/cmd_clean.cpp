@@ -26,6 +26,7 @@ Command add_clean(CLI::App& app) {
     bool orient = false;
     int orient_k = 18;
     std::string orient_method = "tangent";
+    bool no_winding_repair = false;
     std::uint64_t seed = 0;
     bool ascii = false;
   };
@@ -62,6 +63,10 @@ Command add_clean(CLI::App& app) {
                   "tangent: MST whose weights also penalise leaving the tangent planes (no flips across thin walls); "
                   "cgal: CGAL's mst_orient_normals (weights 1 - |ni.nj|)")
       ->check(CLI::IsMember({"tangent", "cgal"}))->capture_default_str()->group(g4);
+  sub->add_flag("--no-winding-repair", o->no_winding_repair,
+                "With --orient-method tangent: keep the regions whose outer side the rest of the cloud encloses (by its generalized "
+                "winding number; by default they are flipped)")
+      ->group(g4);
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
   common->add_to(*sub);
 
@@ -81,6 +86,7 @@ Command add_clean(CLI::App& app) {
     if (o->orient)
       options.orientation = o->orient_method == "cgal" ? CleanOptions::Orientation::CgalMst : CleanOptions::Orientation::TangentMst;
     options.orient_k = o->orient_k;
+    options.repair_enclosed = !o->no_winding_repair;
     options.check();
     ProgressPrinter printer(common->quiet);
     std::vector<StageTiming> stages;
@@ -104,6 +110,7 @@ Command add_clean(CLI::App& app) {
     if (options.random_percentage) counts["removed_random"] = stats.removed_random;
     if (options.orientation == CleanOptions::Orientation::CgalMst) counts["unoriented_removed"] = stats.unoriented_removed;
     if (options.orientation == CleanOptions::Orientation::TangentMst) counts["orientation_components"] = stats.orientation_components;
+    if (options.orientation == CleanOptions::Orientation::TangentMst && options.repair_enclosed) counts["enclosed_flipped_normals"] = stats.enclosed_flipped;
     {
       StageTimer stage(stages, "write");
       write_point_set(o->output, points, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);

@@ -35,7 +35,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
-    bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_data_fit_retry = false, ascii = false;
+    bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_winding_repair = false, no_data_fit_retry = false, ascii = false;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
@@ -86,6 +86,9 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_flag("--recompute-normals", o->reconstruct.recompute_normals, "Ignore the input's normals and estimate new ones");
   sub->add_flag("--no-sign-repair", o->no_sign_repair,
                 "Keep the normals the Poisson function contradicts (by default they are flipped and Poisson solved again, up to 3 times)");
+  sub->add_flag("--no-winding-repair", o->no_winding_repair,
+                "Keep the estimated normals of regions whose outer side the rest of the cloud encloses, by its generalized winding number "
+                "(by default they are flipped before Poisson; automatic normals with features only)");
   sub->add_flag("--no-data-fit-retry", o->no_data_fit_retry,
                 "Keep the first mesh even when input points lie off it (farther than 1.5 average spacings or the surface-distance criterion) "
                 "with normals against it (by default their normals and those around them are flipped, Poisson solved and meshed again, and "
@@ -109,6 +112,7 @@ Command add_reconstruct(CLI::App& app) {
     options.adapt_balls_to_gap = !o->fixed_balls;
     options.repair_normal_signs = !o->no_sign_repair;
     options.refit_off_data = !o->no_data_fit_retry;
+    options.repair_enclosed_normals = !o->no_winding_repair;
     options.flatten_features = !o->no_flattening;
     options.snap_vertices = !o->no_snapping;
     if (o->normals == "auto") {
@@ -170,7 +174,7 @@ Command add_reconstruct(CLI::App& app) {
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
           {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"poisson_screening", options.poisson_screening}, {"poisson_screening_noisy", options.poisson_screening_noisy}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
-          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"data_fit_retry", options.refit_off_data},
+          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"winding_repair", options.repair_enclosed_normals}, {"data_fit_retry", options.refit_off_data},
           {"max_facets", options.max_facets}, {"protection_time_limit_s", options.protection_time_limit}, {"seed", options.seed}}},
         {"derived",
          {{"average_spacing", length_json(result.average_spacing, diagonal)},
@@ -182,7 +186,7 @@ Command add_reconstruct(CLI::App& app) {
           {"estimated_facets", result.estimated_facets}}},
         {"counts",
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
-          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals}, {"patch_flipped_normals", result.patch_flipped_normals}, {"sharpened_normals", result.sharpened_normals}, {"sign_repaired_normals", result.sign_repaired_normals},
+          {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals}, {"patch_flipped_normals", result.patch_flipped_normals}, {"enclosed_flipped_normals", result.enclosed_flipped_normals}, {"sharpened_normals", result.sharpened_normals}, {"sign_repaired_normals", result.sign_repaired_normals},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
           {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"poisson_screening", result.poisson_screening}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"snapped_off_data", result.snapped_off_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},

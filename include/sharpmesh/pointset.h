@@ -141,6 +141,13 @@ std::size_t orient_normals_tangent_mst(PointSet& points, int k = 18, const Progr
 /// `spacing`: the average spacing. Returns the number of normals flipped.
 std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uint32_t>& unreliable, double spacing, int k = 18);
 
+/// Beyond the thesis: flips the regions of normals whose outer side the rest
+/// of the cloud encloses, by the cloud's generalized winding number (about 1
+/// inside, 0 outside a consistently oriented closed surface): an inverted
+/// bore the local rules cannot see. `spacing`: the average spacing; `k`:
+/// neighbours that join a region. Returns the number of normals flipped.
+std::size_t repair_enclosed_normals(PointSet& points, double spacing, int k = 10);
+
 /// The toolbox as one pipeline, in the order of the thesis's Fig. A.2:
 /// outliers, simplification, smoothing, normals, orientation. A step runs
 /// when its option is set.
@@ -159,6 +166,9 @@ struct CleanOptions {
   enum class Orientation { None, TangentMst, CgalMst };
   Orientation orientation = Orientation::None;        ///< App. A.8
   int orient_k = 18;
+  /// With the tangent MST: then flip the regions whose outer side the rest
+  /// of the cloud encloses (repair_enclosed_normals; beyond the thesis).
+  bool repair_enclosed = true;
   /// Throws InvalidArgument for values no cloud accepts (the k checks need the cloud).
   void check() const;
 };
@@ -168,6 +178,7 @@ struct CleanStats {
   std::size_t removed_outliers = 0, removed_outliers_sigma = 0, removed_grid = 0, removed_random = 0;
   std::size_t unoriented_removed = 0;       ///< CGAL's MST orientation
   std::size_t orientation_components = 0;   ///< tangent MST orientation
+  std::size_t enclosed_flipped = 0;         ///< normals flipped by repair_enclosed_normals
   std::vector<StageTiming> stages;
 };
 

@@ -90,6 +90,10 @@ struct ReconstructOptions {
   /// Flip the normals the Poisson function contradicts and solve again
   /// (beyond the thesis; not with check_input_normals = false).
   bool repair_normal_signs = true;
+  /// With automatic normals and extracted features, after the MST: flip the
+  /// regions whose outer side the rest of the cloud encloses, by its
+  /// generalized winding number (repair_enclosed_normals; beyond the thesis).
+  bool repair_enclosed_normals = true;
   /// After meshing, when input points lie farther than max(1.5 avg, the
   /// surface-distance criterion) + 3 x the noise from the mesh with normals
   /// against its closest facets (from 10 points or 0.02%), flip their
@@ -125,6 +129,7 @@ struct ReconstructResult {
   /// isotropic (lambda0/lambda1 < 20: thin walls, creases, corners).
   std::size_t isotropic_cvcm_normals = 0;
   std::size_t patch_flipped_normals = 0;  ///< normals of patches the creases showed inverted after the MST (repair_inverted_patches)
+  std::size_t enclosed_flipped_normals = 0;  ///< normals of regions the rest of the cloud encloses on their outer side (repair_enclosed_normals)
   std::size_t sharpened_normals = 0;  ///< isotropic-CVCM normals replaced by crease-aware ones (shifted planes)
   std::size_t sign_repaired_normals = 0;  ///< normal flips kept by the sign repair against the Poisson function
   FeatureResult features;            ///< when extracted (graph only when given)

@@ -19,6 +19,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["input_normal_agreement"] = r.input_normal_agreement;
   counts["isotropic_cvcm_normals"] = r.isotropic_cvcm_normals;
   counts["patch_flipped_normals"] = r.patch_flipped_normals;
+  counts["enclosed_flipped_normals"] = r.enclosed_flipped_normals;
   counts["sharpened_normals"] = r.sharpened_normals;
   counts["sign_repaired_normals"] = r.sign_repaired_normals;
   counts["vertices"] = r.mesh.vertices.size();
@@ -77,7 +78,7 @@ void bind_reconstruct(py::module_& m) {
   m.def("reconstruct",
         [](const DoubleArray& points, const py::object& point_normals, double delta, bool no_features, const py::object& features,
            double ball_radius, bool fixed_balls, double trim, double poisson_spacing, double poisson_thinning, double poisson_screening, double poisson_screening_noisy, double seed_spacing, bool no_flattening, bool no_snapping, const std::string& normals, int normal_k, int orient_k,
-           bool recompute_normals, bool no_sign_repair, bool no_data_fit_retry, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
+           bool recompute_normals, bool no_sign_repair, bool no_winding_repair, bool no_data_fit_retry, std::size_t max_facets, std::uint32_t seed, double offset_radius, double convolution_radius,
            double t1, double t2, int cluster_k, double cluster_angle, int successor_k, double junction_factor, int denoise_k, bool fit_corner_points,
            const py::object& progress) {
           const PointSet set = to_point_set(points, point_normals);
@@ -113,6 +114,7 @@ void bind_reconstruct(py::module_& m) {
           o.recompute_normals = recompute_normals;
           o.repair_normal_signs = !no_sign_repair;
           o.refit_off_data = !no_data_fit_retry;
+          o.repair_enclosed_normals = !no_winding_repair;
           o.max_facets = max_facets;
           o.seed = seed;
           o.features = feature_options(offset_radius, convolution_radius, t1, t2, cluster_k, cluster_angle, successor_k,
@@ -130,7 +132,7 @@ void bind_reconstruct(py::module_& m) {
         py::arg("poisson_screening") = d.poisson_screening, py::arg("poisson_screening_noisy") = d.poisson_screening_noisy, py::arg("seed_spacing") = d.data_seed_spacing,
         py::arg("no_flattening") = false, py::arg("no_snapping") = false, py::arg("normals") = "auto",
         py::arg("normal_k") = d.normals.k, py::arg("orient_k") = d.orientation.k, py::arg("recompute_normals") = false,
-        py::arg("no_sign_repair") = false, py::arg("no_data_fit_retry") = false,
+        py::arg("no_sign_repair") = false, py::arg("no_winding_repair") = false, py::arg("no_data_fit_retry") = false,
         py::arg("max_facets") = d.max_facets, py::arg("seed") = d.seed, py::arg("offset_radius") = f.offset_radius,
         py::arg("convolution_radius") = f.convolution_radius, py::arg("t1") = f.t1, py::arg("t2") = f.t2,
         py::arg("cluster_k") = f.cluster_k, py::arg("cluster_angle") = f.cluster_angle, py::arg("successor_k") = f.successor_k,
@@ -148,7 +150,8 @@ edges on the Poisson surface; no_snapping: leave the vertices where the refineme
 onto the corners and data points the mesh misses; report counts snapped_*); normals (when
 point_normals is None or recompute_normals): 'auto', 'cvcm', 'jet' or 'pca', over normal_k neighbours, oriented over
 orient_k; no_sign_repair: keep the normals the Poisson function contradicts (by default flipped and
-Poisson solved again, up to 3 times); no_data_fit_retry: keep the first mesh even when input points lie off it (by
+Poisson solved again, up to 3 times); no_winding_repair: keep the regions whose outer side the rest of the cloud
+encloses by its winding number (by default flipped before Poisson); no_data_fit_retry: keep the first mesh even when input points lie off it (by
 default their normals are flipped and the surface solved and meshed again; report['data_fit']); max_facets: refuse larger estimates (0: no limit); the feature options are those of extract_features().)");
 }
 

@@ -328,12 +328,16 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     }
     // Tangent-aware MST (orientation.cpp): no flips across thin walls.
     orient_normals_tangent_mst(oriented, options.orientation.k, progress);
-    if (from_cvcm && options.normal_source == NormalSource::Automatic) {
-      // The crease points' jet normals carried the MST across the creases;
-      // the anisotropic CVCM normals vote on it (patch_orientation.cpp).
+    const bool automatic = options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract;
+    // The crease points' jet normals carried the MST across the creases;
+    // the anisotropic CVCM normals vote on it (patch_orientation.cpp).
+    if (from_cvcm && automatic)
       result.patch_flipped_normals = repair_inverted_patches(oriented, isotropic, result.average_spacing, options.orientation.k);
-      result.sharpened_normals = sharpen_normals(oriented, isotropic, result.features);
-    }
+    // Regions the rest of the surface encloses on their outer side
+    // (enclosed_orientation.cpp); not on the PIF baseline (--no-features).
+    if (automatic && options.repair_enclosed_normals)
+      result.enclosed_flipped_normals = repair_enclosed_normals(oriented, result.average_spacing);
+    if (from_cvcm && automatic) result.sharpened_normals = sharpen_normals(oriented, isotropic, result.features);
     return oriented;
   };
   auto solve = [&](const PointSet& oriented, PoissonDiagnostics& diagnostics, const char* stage) {

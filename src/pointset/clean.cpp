@@ -53,6 +53,8 @@ CleanStats clean_point_set(PointSet& points, const CleanOptions& options, const 
       stats.unoriented_removed = orient_normals_mst(points, {options.orient_k, true}, progress);
     else
       stats.orientation_components = orient_normals_tangent_mst(points, options.orient_k, progress);
+    if (options.orientation == CleanOptions::Orientation::TangentMst && options.repair_enclosed && points.size() >= 4)
+      stats.enclosed_flipped = repair_enclosed_normals(points, average_spacing(points));
   }
   // After the orientation: crease-aware normals turn by 90 degrees across a
   // crease, and the MST would lose their sign there.
