@@ -48,7 +48,7 @@ void bind_pointset(py::module_& m) {
         py::arg("outlier_k") = 24, py::arg("outliers_sigma") = py::none(), py::arg("sigma_k") = 150, py::arg("grid") = py::none(),
         py::arg("random") = py::none(), py::arg("seed") = 0, py::arg("smooth") = 0, py::arg("normals") = py::none(),
         py::arg("normal_k") = 18, py::arg("orient") = false, py::arg("orient_k") = 18, py::arg("orient_method") = "tangent",
-        py::arg("winding_repair") = true,         py::arg("progress") = py::none(),
+        py::arg("winding_repair") = true, py::arg("progress") = py::none(),
         R"(The point-set toolbox of `sharpmesh clean` (thesis App. A) -> PointCloud.
 
 outliers: remove this % of points with the largest average squared kNN distance (A.4), over outlier_k neighbours;

@@ -103,16 +103,14 @@ std::size_t repair_enclosed_normals(PointSet& points, double spacing, int k) {
 
     std::vector<char> flip(groups.size(), 0);
     tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
-      const std::vector<std::uint32_t>& group = groups[g];
-      std::vector<char> member(n, 0), seen(n, 0);
-      for (std::uint32_t i : group) member[i] = 1;
+      const std::vector<std::uint32_t>& group = groups[g];  // in increasing order
       std::vector<std::uint32_t> around, found;
       for (std::uint32_t i : group) {
         index.within(p[i], 2 * offset, found);
-        for (std::uint32_t j : found)
-          if (!seen[j]) seen[j] = 1, around.push_back(j);
+        around.insert(around.end(), found.begin(), found.end());
       }
       std::sort(around.begin(), around.end());
+      around.erase(std::unique(around.begin(), around.end()), around.end());
       const std::size_t stride =
           std::max<std::size_t>(1, static_cast<std::size_t>(2.0 * around.size() * group.size() / kMaxPairs) + 1);
       double labelled_as_is = 0, labelled_flipped = 0, unlabelled_as_is = 0, unlabelled_flipped = 0;
@@ -125,7 +123,7 @@ std::size_t repair_enclosed_normals(PointSet& points, double spacing, int k) {
         const double flipped_out = w_out - 2 * own_out, flipped_in = w_in - 2 * own_in;
         labelled_as_is += std::abs(w_out) + std::abs(w_in - 1);
         // A flipped member's outer side is its former inner side.
-        labelled_flipped += member[j] ? std::abs(flipped_out - 1) + std::abs(flipped_in)
+        labelled_flipped += std::binary_search(group.begin(), group.end(), j) ? std::abs(flipped_out - 1) + std::abs(flipped_in)
                                       : std::abs(flipped_out) + std::abs(flipped_in - 1);
         unlabelled_as_is += off_indicator(w_out) + off_indicator(w_in);
         unlabelled_flipped += off_indicator(flipped_out) + off_indicator(flipped_in);
