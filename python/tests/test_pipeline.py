@@ -17,6 +17,9 @@ def test_clean_uses_the_cli_names_and_defaults(cube_cloud):
     np.testing.assert_allclose(np.linalg.norm(out.normals, axis=1), 1, atol=1e-6)
     with pytest.raises(sm.InvalidArgument, match="smooth"):
         sm.clean(cube_cloud.points, smooth=3)
+    # The winding-number repair has nothing to flip on a cube's consistent normals.
+    plain = sm.clean(cube_cloud.points, normals="jet", orient=True, winding_repair=False)
+    np.testing.assert_array_equal(plain.normals, sm.clean(cube_cloud.points, normals="jet", orient=True).normals)
 
 
 def test_clean_crease_aware_normals_are_face_normals(cube_cloud):
@@ -78,6 +81,7 @@ def test_reconstruction_is_accurate_and_keeps_the_edges(cube, cube_cloud):
     assert 0 < fit["max_distance"] < fit["off_distance"]
     baseline = sm.reconstruct(cube_cloud.points, delta=3.5, no_features=True)
     assert baseline.features is None and "protection" not in baseline.report
+    assert result.report["counts"]["enclosed_flipped_normals"] == 0  # a consistent cube: nothing to flip
     assert sm.evaluate(baseline.mesh, cube)["sharp_max"] > e["sharp_max"]
 
 
