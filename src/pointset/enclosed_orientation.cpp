@@ -70,7 +70,7 @@ std::size_t repair_enclosed_normals(PointSet& points, double spacing, int k) {
     std::vector<double> squared;
     index.nearest(p[i], count, neighbours[i], squared);
     const std::size_t last = std::min<std::size_t>(kAreaNeighbours, squared.size() - 1);
-    area[i] = 3.14159265358979323846 * squared[last] / kAreaNeighbours;
+    area[i] = M_PI * squared[last] / kAreaNeighbours;
     neighbours[i].resize(std::min<std::size_t>(neighbours[i].size(), static_cast<std::size_t>(k) + 1));
   });
   const double offset = kOffsetSpacings * spacing, softening = kSofteningSpacings * spacing;
