@@ -37,6 +37,12 @@ namespace {
 // Median plane-fit residual over 24 neighbours, in average spacings, above
 // which a cloud counts as rough (clean CAD samples: below 0.05; 0.3% noise: 0.3).
 constexpr double kRoughnessRatio = 0.25;
+// ...and at most this many times the residual over 8 neighbours. Noise is
+// there at every scale (uniform noise of 0.1-1% of the diagonal on fandisk,
+// couplingdown, anchor at 50k: 1.2-2.1x), while curvature's residual grows
+// with the neighbourhood's area (clean cheese.off, whose holes are a few
+// spacings wide: 5.9x; knot1 5.6x; the kitten scan 3.6x).
+constexpr double kNoiseScaleRatio = 3;
 constexpr int kMaxDenoisePasses = 3;
 // r_junc at most 8 average spacings (beyond the thesis): two segments of
 // the polylines, whose points lie at least 4 spacings apart (the r_p floor).
@@ -142,7 +148,8 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
     // Voronoi cells turn into cones (Fig. 7.2 right), the anisotropy of the
     // faces collapses and no t1 separates edges from faces. Two symptoms
     // together identify it: half of the points or more are rough at the
-    // sampling scale (plane residual over 24 neighbours), and the upper
+    // sampling scale (plane residual over 24 neighbours, and not mostly by
+    // curvature: see kNoiseScaleRatio), and the upper
     // quartile of lambda0/lambda1 (mostly face points) falls below 2 t1.
     // Such clouds are jet-smoothed (App. A.6) over a neighbourhood a few
     // noise deviations wide and classified again;
@@ -150,7 +157,9 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
     result.denoise_k = options.denoise_k;
     if (options.denoise_k < 0) {
       const double roughness = estimate_noise(input.points, *index, 0, 24) / result.average_spacing;
-      const bool noisy = roughness > kRoughnessRatio && face_anisotropy(result.points) < 2 * options.t1;
+      const bool noisy = roughness > kRoughnessRatio &&
+                         roughness < kNoiseScaleRatio * estimate_noise(input.points, *index, 0, 8) / result.average_spacing &&
+                         face_anisotropy(result.points) < 2 * options.t1;
       const double ratio = result.noise_estimate / result.average_spacing;
       result.denoise_k = noisy ? static_cast<int>(std::clamp(100 * ratio * ratio, 24.0, 300.0)) : 0;
     }

@@ -138,16 +138,34 @@ class VertexMover {
       for (int j = 0; j < 3; ++j)
         if (s[i] == t[j]) si[shared] = i, ti[shared] = j, ++shared;
     using K = detail::Kernel;
-    if (shared == 0) return CGAL::do_intersect(K::Triangle_3(point(s[0]), point(s[1]), point(s[2])), K::Triangle_3(point(t[0]), point(t[1]), point(t[2])));
+    if (shared == 0) {
+      const K::Triangle_3 a(point(s[0]), point(s[1]), point(s[2])), b(point(t[0]), point(t[1]), point(t[2]));
+      return CGAL::do_intersect(a, b) || (!a.is_degenerate() && !b.is_degenerate() && nearly_touch(a, b, -1, -1));
+    }
     if (shared == 1) {  // each one's opposite edge against the other
       const K::Triangle_3 a(point(s[0]), point(s[1]), point(s[2])), b(point(t[0]), point(t[1]), point(t[2]));
       if (a.is_degenerate() || b.is_degenerate()) return false;
       const K::Segment_3 a_edge(point(s[(si[0] + 1) % 3]), point(s[(si[0] + 2) % 3])), b_edge(point(t[(ti[0] + 1) % 3]), point(t[(ti[0] + 2) % 3]));
-      return CGAL::do_intersect(a_edge, b) || CGAL::do_intersect(b_edge, a);
+      return CGAL::do_intersect(a_edge, b) || CGAL::do_intersect(b_edge, a) || nearly_touch(a, b, si[0], ti[0]);
     }
     if (shared == 2) {  // folded onto each other
       const K::Point_3 e0 = point(s[si[0]]), e1 = point(s[si[1]]), a = point(s[3 - si[0] - si[1]]), b = point(t[3 - ti[0] - ti[1]]);
       return CGAL::coplanar(e0, e1, a, b) && CGAL::coplanar_orientation(e0, e1, a, b) == CGAL::POSITIVE;
+    }
+    return false;
+  }
+
+  /// Whether a vertex of one facet (other than the shared ones, `skip_a` of
+  /// a and `skip_b` of b, -1 for none) lies within a millionth of the
+  /// longest edge of the other facet: exactly apart, but touching for every
+  /// tool that tests with a tolerance once written (a scan's points on one
+  /// plane snap a facet flat onto a vertex already on that plane).
+  bool nearly_touch(const detail::Kernel::Triangle_3& a, const detail::Kernel::Triangle_3& b, int skip_a, int skip_b) const {
+    const double tolerance = 1e-6 * longest_edge_;
+    const double tolerance2 = tolerance * tolerance;
+    for (int k = 0; k < 3; ++k) {
+      if (k != skip_a && CGAL::to_double(CGAL::squared_distance(a.vertex(k), b)) < tolerance2) return true;
+      if (k != skip_b && CGAL::to_double(CGAL::squared_distance(b.vertex(k), a)) < tolerance2) return true;
     }
     return false;
   }

@@ -610,6 +610,33 @@ TEST(Snapping, MovesAVertexAwayFromTheDataOntoItsTangentPlane) {
   EXPECT_THROW(snap_to_corners_and_data(with_normals, {}, points, options), InvalidArgument);
 }
 
+// The same move would bring the plate's facet within 1e-12 of the tip of a
+// separate spike: exactly apart, but touching for any tool that tests with
+// a tolerance once the mesh is written (a scan whose points lie on one
+// plane, CGAL's point_set_3.xyz). The move is refused; a tip 0.001 above
+// the plate lets it through.
+TEST(Snapping, RefusesAMoveThatBringsAFacetOntoAnotherVertex) {
+  const int n = 10;
+  const std::vector<Vec3> points = plate_points(40000, 5);
+  SnappingOptions options = plate_snapping();
+  options.points_are_targets = false;
+  options.average_spacing = 0.005;
+  options.point_normals.assign(points.size(), Vec3{0, 0, 1});
+  for (const double tip : {1e-12, 1e-3}) {
+    SurfaceMesh mesh;
+    add_plate(mesh, n, 0);
+    const std::size_t centre = 5 * (n + 1) + 5;
+    mesh.vertices[centre] = {0.5, 0.5, -0.05};
+    const std::uint32_t base = mesh.vertices.size();
+    mesh.vertices.insert(mesh.vertices.end(), {{0.52, 0.5, tip}, {0.53, 0.5, 0.5}, {0.52, 0.51, 0.5}});
+    mesh.faces.push_back({base, base + 1, base + 2});
+    const SnappingStats stats = snap_to_corners_and_data(mesh, {}, points, options);
+    EXPECT_EQ(stats.off_data_vertices, tip < 1e-6 ? 0u : 1u) << "tip " << tip;
+    EXPECT_EQ(mesh.vertices[centre][2], tip < 1e-6 ? -0.05 : 0.0) << "tip " << tip;
+    EXPECT_FALSE(check_topology(mesh).self_intersecting);
+  }
+}
+
 // Points 0.02 above a plate of two large facets at z = 0.05, over a fine
 // plate at z = 0: the only vertex within reach is the fine plate's, and
 // moving it onto them would pierce the upper plate. Refused at once, so
