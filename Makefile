@@ -46,6 +46,7 @@ bench: data
 	@bench/accuracy_vs_size $(BUILD_DIR)
 	@bench/fig714 $(BUILD_DIR)
 	@bench/sampling_seeds $(BUILD_DIR)
+	@bench/scans $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)
 	@bench/stereo_study $(BUILD_DIR)
 
