@@ -12,7 +12,8 @@ Command add_sample(CLI::App& app) {
   struct Options {
     std::string input, output, sharp_output;
     std::size_t count = 100000;
-    double noise = 0;
+    double noise = 0, density_ratio = 1, missing_radius = 0.05;
+    std::size_t missing_patches = 0;
     std::uint64_t seed = 0;
     double sharp_angle = 30;
     bool normals = false, ascii = false;
@@ -24,6 +25,12 @@ Command add_sample(CLI::App& app) {
   sub->add_option("-n,--count", o->count, "Number of points")->check(CLI::PositiveNumber)->capture_default_str();
   sub->add_option("--noise", o->noise, "Uniform noise amplitude, as a fraction of the bounding-box diagonal (thesis 7.5: 0.01)")
       ->check(CLI::Range(0.0, 0.5))->capture_default_str();
+  sub->add_option("--density-ratio", o->density_ratio,
+                  "Non-uniform sampling: the density grows linearly across the part, along a direction drawn from the seed, up to this ratio")
+      ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+  sub->add_option("--missing-patches", o->missing_patches, "Balls on the surface left without samples (occlusions)")->capture_default_str();
+  sub->add_option("--missing-radius", o->missing_radius, "Radius of each missing patch, fraction of the bounding-box diagonal")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   sub->add_option("--seed", o->seed, "Random seed")->capture_default_str();
   sub->add_option("-o,--output", o->output, "Output point cloud (.ply or .xyz)")->required();
   sub->add_flag("--normals", o->normals, "Store the exact facet normal of each sample");
@@ -42,6 +49,9 @@ Command add_sample(CLI::App& app) {
     options.count = o->count;
     options.noise = o->noise;
     options.seed = o->seed;
+    options.density_ratio = o->density_ratio;
+    options.missing_patches = o->missing_patches;
+    options.missing_radius = o->missing_radius;
     options.with_normals = o->normals;
     const PointSet points = sample_mesh(mesh, options);
     std::vector<Polyline> edges;
@@ -56,7 +66,9 @@ Command add_sample(CLI::App& app) {
     write_report(common->report, {{"command", "sample"},
                                   {"input", o->input},
                                   {"output", o->output},
-                                  {"parameters", {{"count", o->count}, {"noise", o->noise}, {"seed", o->seed}, {"sharp_angle", o->sharp_angle}}},
+                                  {"parameters", {{"count", o->count}, {"noise", o->noise}, {"seed", o->seed}, {"sharp_angle", o->sharp_angle},
+                                                  {"density_ratio", o->density_ratio}, {"missing_patches", o->missing_patches},
+                                                  {"missing_radius", o->missing_radius}}},
                                   {"counts", {{"points", points.size()}, {"sharp_polylines", edges.size()}, {"mesh_faces", mesh.faces.size()}}},
                                   {"seconds", seconds_since(start)}});
   };

@@ -14,11 +14,18 @@ namespace sharpmesh {
 /// Points uniformly distributed over the area of a mesh, with optional
 /// uniform noise of amplitude `noise` times the bounding-box diagonal (each
 /// coordinate offset uniformly in [-a, a], the thesis's noise model, 7.5).
+/// Scanners do not sample uniformly: `density_ratio` makes the density grow
+/// linearly across the part, along a direction drawn from the seed, from 1
+/// to that ratio; `missing_patches` balls of `missing_radius` times the
+/// diagonal, centred on the surface, get no sample (occlusions, dark spots).
 struct SampleOptions {
   std::size_t count = 100'000;
   double noise = 0.0;  ///< fraction of the bounding-box diagonal
   std::uint64_t seed = 0;
   bool with_normals = false;  ///< store the facet normal of each sample
+  double density_ratio = 1.0;         ///< densest / sparsest sampling density, >= 1
+  std::size_t missing_patches = 0;    ///< balls left without samples
+  double missing_radius = 0.05;       ///< their radius, fraction of the bounding-box diagonal
   void check() const;
 };
 PointSet sample_mesh(const SurfaceMesh& mesh, const SampleOptions& options);

@@ -26,13 +26,17 @@ py::dict topology_dict(const TopologyReport& t) {
 
 void bind_eval(py::module_& m) {
   m.def("sample",
-        [](const py::object& mesh, std::size_t count, double noise, std::uint64_t seed, bool normals) {
+        [](const py::object& mesh, std::size_t count, double noise, std::uint64_t seed, bool normals, double density_ratio,
+           std::size_t missing_patches, double missing_radius) {
           const SurfaceMesh surface = to_mesh(mesh, "mesh");
           SampleOptions o;
           o.count = count;
           o.noise = noise;
           o.seed = seed;
           o.with_normals = normals;
+          o.density_ratio = density_ratio;
+          o.missing_patches = missing_patches;
+          o.missing_radius = missing_radius;
           o.check();
           PointSet set;
           {
@@ -42,8 +46,10 @@ void bind_eval(py::module_& m) {
           return make_point_cloud(set);
         },
         py::arg("mesh"), py::kw_only(), py::arg("count") = 100000, py::arg("noise") = 0.0, py::arg("seed") = 0,
-        py::arg("normals") = false,
-        "Uniform samples of a mesh, as `sharpmesh sample` -> PointCloud. noise: uniform, fraction of the diagonal (7.5).");
+        py::arg("normals") = false, py::arg("density_ratio") = SampleOptions{}.density_ratio,
+        py::arg("missing_patches") = SampleOptions{}.missing_patches, py::arg("missing_radius") = SampleOptions{}.missing_radius,
+        "Samples of a mesh, as `sharpmesh sample` -> PointCloud. noise: uniform, fraction of the diagonal (7.5); density_ratio: "
+        "densest / sparsest density along a seeded direction; missing_patches balls of missing_radius x diagonal without samples.");
   m.def("sharp_edges",
         [](const py::object& mesh, double sharp_angle) { return from_polylines(sharp_edges(to_mesh(mesh, "mesh"), sharp_angle)); },
         py::arg("mesh"), py::arg("sharp_angle") = 30.0,

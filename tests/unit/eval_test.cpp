@@ -1,7 +1,10 @@
 // Sampling, sharp edges, topology checks and distances on analytic meshes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "fixtures.h"
 #include "sharpmesh/errors.h"
@@ -29,6 +32,70 @@ TEST(Sample, PointsLieOnTheCubeAndNoiseStaysWithinItsAmplitude) {
   const double amplitude = 0.01 * std::sqrt(3.0);
   for (const Vec3& p : noisy.points) EXPECT_LE(std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}), 0.5 + amplitude);
   EXPECT_EQ(sample_mesh(cube, options).points, noisy.points);  // same seed, same points
+}
+
+namespace {
+// Distance from `p` to the nearest of `points` (brute force: test sizes only).
+double nearest_distance(const Vec3& p, const std::vector<Vec3>& points) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Vec3& q : points) best = std::min(best, distance(p, q));
+  return best;
+}
+// Neighbours of each point within `radius`, sorted.
+std::vector<std::size_t> sorted_neighbour_counts(const std::vector<Vec3>& points, double radius) {
+  std::vector<std::size_t> counts(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t j = i + 1; j < points.size(); ++j)
+      if (distance(points[i], points[j]) < radius) ++counts[i], ++counts[j];
+  std::sort(counts.begin(), counts.end());
+  return counts;
+}
+}  // namespace
+
+TEST(Sample, MissingPatchesLeaveEmptyBallsOfTheirRadius) {
+  const SurfaceMesh sphere = test::sphere_mesh(4);
+  SampleOptions options;
+  options.count = 4000;
+  options.seed = 3;
+  const PointSet full = sample_mesh(sphere, options);
+  options.missing_patches = 3;
+  options.missing_radius = 0.1;
+  const PointSet holed = sample_mesh(sphere, options);
+  ASSERT_EQ(holed.size(), 4000u);  // the holes cost draws, never the count
+  options.missing_patches = 0;
+  options.seed = 11;
+  const PointSet probes = sample_mesh(sphere, options);
+  double widest_full = 0, widest_holed = 0;
+  for (const Vec3& p : probes.points) {
+    widest_full = std::max(widest_full, nearest_distance(p, full.points));
+    widest_holed = std::max(widest_holed, nearest_distance(p, holed.points));
+  }
+  const double radius = 0.1 * 2 * std::sqrt(3.0);  // of the diagonal of the sphere's box
+  EXPECT_LT(widest_full, 0.4 * radius);
+  EXPECT_GT(widest_holed, 0.8 * radius);  // a probe near a hole's centre is a radius from any sample
+}
+
+TEST(Sample, DensityRatioSpreadsTheLocalDensityByAboutThatRatio) {
+  const SurfaceMesh sphere = test::sphere_mesh(4);
+  SampleOptions options;
+  options.count = 4000;
+  options.seed = 2;
+  const double radius = 0.3;
+  auto spread = [&](const PointSet& s) {
+    const std::vector<std::size_t> n = sorted_neighbour_counts(s.points, radius);
+    return double(n[n.size() * 95 / 100]) / double(std::max<std::size_t>(1, n[n.size() * 5 / 100]));
+  };
+  const double uniform = spread(sample_mesh(sphere, options));
+  options.density_ratio = 5;
+  const PointSet graded = sample_mesh(sphere, options);
+  ASSERT_EQ(graded.size(), 4000u);
+  EXPECT_LT(uniform, 1.8);
+  EXPECT_GT(spread(graded), 3.0) << "uniform spread " << uniform;
+  options.density_ratio = 0.5;
+  EXPECT_THROW(options.check(), InvalidArgument);
+  options.density_ratio = 1;
+  options.missing_radius = 0;
+  EXPECT_THROW(options.check(), InvalidArgument);
 }
 
 TEST(SharpEdges, CubeHasTwelveEdgesSphereNone) {
