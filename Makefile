@@ -35,7 +35,7 @@ test-sanitize: data
 	@scripts/install-deps --sanitize
 	@cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHARPMESH_SANITIZE=ON >/dev/null
 	@cmake --build $(SANITIZE_DIR) -j $(JOBS)
-	@ASAN_OPTIONS=detect_leaks=1 ctest --test-dir $(SANITIZE_DIR) --output-on-failure -j $(JOBS) -LE slow
+	@ASAN_OPTIONS=detect_leaks=1 ctest --test-dir $(SANITIZE_DIR) --output-on-failure -j $(JOBS) -LE "slow|corpus"
 
 bench: data
 	@scripts/install-deps --bench
@@ -47,6 +47,7 @@ bench: data
 	@bench/fig714 $(BUILD_DIR)
 	@bench/sampling_seeds $(BUILD_DIR)
 	@bench/scans $(BUILD_DIR)
+	@bench/corpus_generated $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)
 	@bench/stereo_study $(BUILD_DIR)
 

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "sharpmesh/eval.h"
 #include "sharpmesh/io.h"
 #include "sharpmesh/reconstruct.h"
 
@@ -35,7 +36,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
-    bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_winding_repair = false, no_data_fit_retry = false, ascii = false;
+    bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_winding_repair = false, no_data_fit_retry = false, no_intersection_repair = false, allow_invalid = false, ascii = false;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
@@ -100,6 +101,12 @@ Command add_reconstruct(CLI::App& app) {
                   "report says so (0: no limit)")
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
+  sub->add_flag("--no-intersection-repair", o->no_intersection_repair,
+                "Leave facets that cross others as the refinement made them (by default they are cut out with a ring of "
+                "neighbours and the holes filled)");
+  sub->add_flag("--allow-invalid", o->allow_invalid,
+                "Write the mesh even if facets still cross others after the repair (by default nothing is written and "
+                "the exit status is 1)");
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
   add_feature_options(*sub, o->reconstruct.features);
   common->add_to(*sub);
@@ -115,6 +122,7 @@ Command add_reconstruct(CLI::App& app) {
     options.repair_enclosed_normals = !o->no_winding_repair;
     options.flatten_features = !o->no_flattening;
     options.snap_vertices = !o->no_snapping;
+    options.repair_self_intersections = !o->no_intersection_repair;
     if (o->normals == "auto") {
       options.normal_source = NormalSource::Automatic;
     } else if (o->normals == "cvcm") {
@@ -135,6 +143,12 @@ Command add_reconstruct(CLI::App& app) {
     }
     ProgressPrinter printer(common->quiet);
     ReconstructResult result = reconstruct(points, options, printer.callback());
+    const bool crossing = options.repair_self_intersections ? result.intersection_repair.remaining_pairs > 0
+                                                             : !self_intersecting_faces(result.mesh).empty();
+    if (crossing && !o->allow_invalid)
+      throw Error(o->input + ": the mesh has facets that cross others" +
+                  (options.repair_self_intersections ? " after " + std::to_string(result.intersection_repair.rounds) + " repair rounds" : std::string()) +
+                  "; nothing written (--allow-invalid writes it anyway)");
     {
       StageTimer timer(io_stages, "write");
       write_mesh(o->output, result.mesh, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
@@ -152,6 +166,13 @@ Command add_reconstruct(CLI::App& app) {
         printer.message("  open surface: " + std::to_string(result.trimmed_facets) + " facets far from the data removed, " +
                         std::to_string(result.clipped_facets) + " cut along the data's edge, " +
                         std::to_string(result.boundary_edges) + " boundary edges");
+      if (result.intersection_repair.intersecting_pairs > 0)
+        printer.message("  self-intersections: " + std::to_string(result.intersection_repair.intersecting_pairs) + " crossing facet pairs, " +
+                        std::to_string(result.intersection_repair.removed_facets) + " facets cut out, " +
+                        std::to_string(result.intersection_repair.added_facets) + " filled in, " +
+                        std::to_string(result.intersection_repair.remaining_pairs) + " pairs left");
+      if (result.dataless_facets > 0)
+        printer.message("  " + std::to_string(result.dataless_facets) + " facets of components away from the data removed");
       if (options.feature_mode != FeatureMode::None) {
         char line[200];
         std::snprintf(line, sizeof line, "  features: %zu polylines, %zu balls (%zu grown), %zu/%zu segments are mesh edges, %zu uncovered gaps",
@@ -188,7 +209,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals}, {"patch_flipped_normals", result.patch_flipped_normals}, {"enclosed_flipped_normals", result.enclosed_flipped_normals}, {"sharpened_normals", result.sharpened_normals}, {"sign_repaired_normals", result.sign_repaired_normals},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
-          {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"poisson_screening", result.poisson_screening}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"snapped_off_data", result.snapped_off_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
+          {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"poisson_screening", result.poisson_screening}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"snapped_off_data", result.snapped_off_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"dataless_facets", result.dataless_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     const double spacing = result.average_spacing > 0 ? result.average_spacing : 1.0;
@@ -207,6 +228,12 @@ Command add_reconstruct(CLI::App& app) {
       std::fprintf(stderr, "reconstruct: warning: %zu input points lie more than %.2f average spacings from the mesh with normals against it (farthest point %.2f): the surface may have closed a hole or a slot there\n",
                    result.off_data_against, result.off_data_distance / spacing, result.max_data_distance / spacing);
     if (options.feature_mode != FeatureMode::None) report["protection"] = protection_report(result, diagonal);
+    report["self_intersections"] = {{"repair", options.repair_self_intersections},
+                                    {"found_pairs", result.intersection_repair.intersecting_pairs},
+                                    {"remaining_pairs", result.intersection_repair.remaining_pairs},
+                                    {"removed_facets", result.intersection_repair.removed_facets},
+                                    {"added_facets", result.intersection_repair.added_facets},
+                                    {"written_invalid", crossing}};
     report["refinement"] = {{"steps", result.meshing.refinement_steps}, {"stalled", result.meshing.refinement_stalled}, {"runaway", result.meshing.refinement_runaway}};
     if (result.meshing.refinement_runaway && !common->quiet)
       std::fprintf(stderr, "reconstruct: warning: refinement was still adding vertices long after the expected count and was ended; check the mesh's topology\n");

@@ -71,6 +71,11 @@ struct FeatureGraph {
   std::vector<Junction> junctions;
 };
 
+/// Noise estimate, as a fraction of the average spacing, below which a cloud
+/// is clean: CAD samples measure 0.001-0.021; 0.2% and 0.5% uniform noise on
+/// fandisk 50k, 0.24 and 0.13 (after denoising).
+inline constexpr double kCleanNoiseRatio = 0.05;
+
 struct FeatureResult {
   FeatureGraph graph;
   std::vector<PointFeature> points;  ///< one per input point

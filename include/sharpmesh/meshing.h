@@ -146,6 +146,13 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
 /// no facet uses. Returns the number of facets removed.
 std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance);
 
+/// Removes the connected components (facets sharing vertices) whose median
+/// vertex lies farther than `max_distance` from every point of `points`:
+/// bubbles of an implicit function that carry no data (a sphere in a cavity
+/// leaves Poisson a second zero set in the gap). A component on the data
+/// keeps every facet. Returns the number of facets removed.
+std::size_t remove_components_off_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance);
+
 /// Gaps inside the data are kept, its outer edge is not extended: removes
 /// the facets with no corner and no centroid within `max_distance` of the
 /// points, unless the points within `bridge` local spacings of the centroid
@@ -175,6 +182,27 @@ struct HoleFillingStats {
 /// Fills the holes of `mesh` (any orientation, non-manifold vertices
 /// allowed) whose perimeter is at most options.max_perimeter.
 HoleFillingStats fill_holes(SurfaceMesh& mesh, const HoleFillingOptions& options, const Progress& progress = {});
+
+/// Self-intersection repair: the facets that cross others, with `rings`
+/// rings of neighbours (one more each round), are cut out and the holes
+/// closed by fill_holes, until no pair crosses or `max_rounds` are done.
+struct IntersectionRepairOptions {
+  int max_rounds = 3;
+  int rings = 1;
+  void check() const;
+};
+
+struct IntersectionRepairStats {
+  std::size_t intersecting_pairs = 0;  ///< crossing facet pairs before the repair
+  std::size_t remaining_pairs = 0;     ///< after it (0: the mesh no longer self-intersects)
+  std::size_t removed_facets = 0;
+  std::size_t added_facets = 0;
+  int rounds = 0;
+};
+
+/// Repairs the self-intersections of `mesh` in place (see IntersectionRepairOptions).
+IntersectionRepairStats repair_self_intersections(SurfaceMesh& mesh, const IntersectionRepairOptions& options = {},
+                                                  const Progress& progress = {});
 
 /// Flattening of the facets along protected edges (beyond the thesis).
 struct FlatteningOptions {

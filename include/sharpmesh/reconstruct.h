@@ -79,6 +79,11 @@ struct ReconstructOptions {
   /// (snap_to_corners_and_data). With extracted features only: the PIF
   /// baseline stays the thesis's.
   bool snap_vertices = true;
+  /// Beyond the thesis: the facets of the output that cross others are cut
+  /// out with a ring of neighbours and the holes filled
+  /// (repair_self_intersections); ReconstructResult::intersection_repair
+  /// says whether any crossing remains.
+  bool repair_self_intersections = true;
   NormalSource normal_source = NormalSource::Automatic;
   NormalEstimationOptions normals;       ///< used when the input has no normals
   NormalOrientationOptions orientation;  ///< used when the input has no normals
@@ -136,6 +141,7 @@ struct ReconstructResult {
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)
   std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
+  std::size_t dataless_facets = 0;   ///< of whole components off the data, removed (remove_components_off_points)
   std::size_t thin_points = 0;         ///< input points where the solid or a gap is thinner than the seed spacing / 2
   std::size_t flattened_vertices = 0;  ///< moved onto the face planes next to protected edges
   std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect
@@ -146,6 +152,7 @@ struct ReconstructResult {
   std::size_t unsnapped_vertices = 0;  ///< snaps undone because they made facets intersect
   std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
+  IntersectionRepairStats intersection_repair;  ///< crossings found, repaired and left (remaining_pairs)
   /// Input points farther than off_data_distance = max(1.5 avg, the
   /// surface-distance criterion) + 3 x the noise from the output mesh: data
   /// the surface does not represent (measured with or without refit_off_data).

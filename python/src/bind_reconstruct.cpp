@@ -25,6 +25,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["vertices"] = r.mesh.vertices.size();
   counts["facets"] = r.mesh.faces.size();
   counts["trimmed_facets"] = r.trimmed_facets;
+  counts["dataless_facets"] = r.dataless_facets;
   counts["clipped_facets"] = r.clipped_facets;
   counts["data_seeds"] = r.meshing.data_seeds;
   counts["thin_points"] = r.thin_points;
@@ -45,6 +46,12 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   fit["points_off_first_mesh"] = r.off_data_points_before_retry;
   fit["retry_flipped_normals"] = r.off_data_flips;
   report["data_fit"] = fit;
+  py::dict crossings;
+  crossings["found_pairs"] = r.intersection_repair.intersecting_pairs;
+  crossings["remaining_pairs"] = r.intersection_repair.remaining_pairs;
+  crossings["removed_facets"] = r.intersection_repair.removed_facets;
+  crossings["added_facets"] = r.intersection_repair.added_facets;
+  report["self_intersections"] = crossings;
   derived["average_spacing"] = r.average_spacing;
   derived["d_prime"] = r.d_prime;
   derived["facet_angle_deg"] = r.criteria.angle;

@@ -104,6 +104,45 @@ std::size_t trim_unless_bridging(SurfaceMesh& mesh, const std::vector<Vec3>& poi
   });
 }
 
+std::size_t remove_components_off_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance) {
+  if (!(max_distance > 0) || !std::isfinite(max_distance)) throw InvalidArgument("component removal: the distance must be positive");
+  if (points.empty() || mesh.faces.empty()) return 0;
+  detail::DisjointSets components(mesh.vertices.size());
+  for (const Triangle& t : mesh.faces)
+    for (int k = 1; k < 3; ++k) components.unite(t[0], t[k]);
+  auto root = [&](std::uint32_t v) { return static_cast<std::uint32_t>(components.find(v)); };
+  const detail::KnnIndex index(points);
+  std::vector<double> distance(mesh.vertices.size(), 0.0);
+  tbb::parallel_for(std::size_t(0), mesh.vertices.size(), [&](std::size_t v) {
+    std::vector<std::uint32_t> ids;
+    std::vector<double> d2;
+    index.nearest(mesh.vertices[v], 1, ids, d2);
+    distance[v] = d2.empty() ? 0.0 : std::sqrt(d2[0]);
+  });
+  std::vector<std::vector<double>> by_component(mesh.vertices.size());
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const Triangle& t : mesh.faces)
+    for (std::uint32_t v : t) used[v] = 1;
+  for (std::uint32_t v = 0; v < used.size(); ++v)
+    if (used[v]) by_component[root(v)].push_back(distance[v]);
+  std::vector<char> off(mesh.vertices.size(), 0);
+  std::size_t kept_components = 0;
+  for (std::uint32_t r = 0; r < by_component.size(); ++r) {
+    std::vector<double>& d = by_component[r];
+    if (d.empty()) continue;
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    off[r] = d[d.size() / 2] > max_distance;
+    kept_components += !off[r];
+  }
+  if (kept_components == 0) return 0;  // nothing would be left: the caller's checks report it
+  std::vector<Triangle> faces;
+  for (const Triangle& t : mesh.faces)
+    if (!off[root(t[0])]) faces.push_back(t);
+  const std::size_t removed = mesh.faces.size() - faces.size();
+  if (removed > 0) detail::set_faces_and_compact(mesh, std::move(faces));
+  return removed;
+}
+
 std::size_t count_boundary_edges(const SurfaceMesh& mesh) {
   std::size_t count = 0;
   for (const auto& e : detail::edge_incidences(mesh)) count += e.faces.size() == 1;

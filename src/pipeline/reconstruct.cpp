@@ -17,11 +17,6 @@
 namespace sharpmesh {
 namespace {
 
-// Noise estimate (fraction of the average spacing) below which a cloud is
-// clean: CAD samples measure 0.001-0.021; 0.2% and 0.5% uniform noise on
-// fandisk 50k, 0.24 and 0.13 (after denoising).
-constexpr double kCleanNoise = 0.05;
-
 ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress);
 
 }  // namespace
@@ -81,6 +76,18 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
     if (gap.gap > 0) gap.gap = frame.length_to_world(gap.gap);
   }
   result.meshing.max_gap = frame.length_to_world(result.meshing.max_gap);
+  // Beyond the thesis: the output is valid every time it can be (issue
+  // 36's gate). Refinement near thin parts, flattening and snapping check
+  // their own moves, but the Delaunay refinement of a surface whose two
+  // sides lie closer than its facets' size can itself cross them. Checked
+  // on the world coordinates written out: the translation's rounding decides
+  // touching facets either way. The data-fit counts are the mesh's before
+  // the repair, which changes a few facets.
+  if (options.repair_self_intersections && !result.mesh.faces.empty()) {
+    StageTimer timer(result.stages, "self-intersection check");
+    result.intersection_repair = repair_self_intersections(result.mesh, {}, progress);
+    if (result.intersection_repair.rounds > 0) result.boundary_edges = count_boundary_edges(result.mesh);
+  }
   for (double* length : {&result.average_spacing, &result.d_prime, &result.criteria.edge_length, &result.criteria.distance})
     *length = frame.length_to_world(*length);
   return result;
@@ -353,7 +360,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     const bool thin = options.poisson_thinning > 0, grid = options.poisson_spacing > 0;
     PoissonOptions poisson;
     const bool noisy = options.feature_mode == FeatureMode::Extract &&
-                       (result.features.denoise_passes > 0 || !(result.features.noise_estimate < kCleanNoise * result.average_spacing));
+                       (result.features.denoise_passes > 0 || !(result.features.noise_estimate < kCleanNoiseRatio * result.average_spacing));
     poisson.screening = result.poisson_screening = noisy ? options.poisson_screening_noisy : options.poisson_screening;
     poisson.average_spacing = result.average_spacing;
     if (!thin && !grid) return poisson_surface(oriented, poisson, progress, &diagnostics);
@@ -461,6 +468,14 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
         out.flattened_vertices -= std::min(out.flattened_vertices, restored);
         out.unflattened_vertices += restored;
       }
+    }
+    // Closed or open, a component whose vertices mostly lie off the data is
+    // the implicit function's, not the data's (a bubble in a gap between
+    // nested solids); the off-data distance is the data fit's below.
+    {
+      const double noise = options.feature_mode == FeatureMode::Extract ? out.features.noise_estimate : 0.0;
+      out.dataless_facets = remove_components_off_points(
+          out.mesh, input.points, std::max(1.5 * out.average_spacing, out.criteria.distance) + 3 * noise);
     }
     if (options.trim_distance > 0) {
       StageTimer timer(out.stages, retry_prefix + "trim");
@@ -575,7 +590,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
       std::vector<Vec3> corners;
       for (const Junction& j : result.features.graph.junctions)
         if (j.degree >= 2) corners.push_back(j.position);
-      const bool clean = result.features.denoise_passes == 0 && noise < kCleanNoise * result.average_spacing;
+      const bool clean = result.features.denoise_passes == 0 && noise < kCleanNoiseRatio * result.average_spacing;
       SnappingOptions snapping;
       // The rounding left is 1-1.5 spacings; a vertex moves at most 2.
       snapping.max_move = 2 * result.average_spacing + 3 * noise;

@@ -113,6 +113,8 @@ SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model
   // again the gaps among sparse tracks that the fill is meant to close.
   surface.trim_distance = std::max(0.1, reach / d_prime);
   surface.clip_boundary = false;
+  // Its facets only feed the soup mesher, which meshes the soup anew.
+  surface.repair_self_intersections = false;
   SurfaceMesh fill;
   try {
     fill = reconstruct(tracks, surface, progress).mesh;

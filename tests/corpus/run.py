@@ -34,9 +34,17 @@ VARIATIONS = {
 }
 
 
+# A case that runs longer than this counts as failed ("exit timeout"): a
+# user waits minutes for a 50k-point part, not hours.
+TIMEOUT_SECONDS = 900
+
+
 def run(cmd, log):
     with open(log, "w") as f:
-        return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT).returncode
+        try:
+            return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, timeout=TIMEOUT_SECONDS).returncode
+        except subprocess.TimeoutExpired:
+            return "timeout"
 
 
 def load(path):
@@ -138,7 +146,7 @@ def main():
                     tag = os.path.join(args.work, f"{model}-{variation}-{points}-d{delta}")
                     case = {"model": model, "family": meta["family"], "kind": meta["kind"], "variation": variation,
                             "points": int(points), "delta": float(delta), "thin": meta.get("thin"),
-                            "spacing_50k": meta.get("spacing_50k")}
+                            "spacing_50k": meta.get("spacing_50k"), "components": meta.get("components")}
                     case["ours"] = reconstruct(args.binary, cloud, reference, tag + "-ours", delta, [])
                     if args.pif:
                         case["pif"] = reconstruct(args.binary, cloud, reference, tag + "-pif", delta, ["--no-features"])

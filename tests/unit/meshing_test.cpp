@@ -298,6 +298,67 @@ TEST(Trim, BridgesAGapInsideTheDataButDoesNotExtendItsEdge) {
   EXPECT_THROW(trim_unless_bridging(near_only, points, 0.1, -1.0), InvalidArgument);
 }
 
+// A sphere of data inside a sphere of data, and between them a third
+// sphere no point lies on (a bubble of the implicit function): only the
+// bubble goes; the data's spheres keep every facet, whatever their size.
+TEST(Trim, RemovesOnlyTheComponentsThatCarryNoData) {
+  auto shifted = [](SurfaceMesh m, double dx) {
+    for (Vec3& v : m.vertices) v[0] += dx;
+    return m;
+  };
+  auto append = [](SurfaceMesh& to, const SurfaceMesh& from) {
+    const auto base = static_cast<std::uint32_t>(to.vertices.size());
+    to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
+    for (Triangle t : from.faces) to.faces.push_back({t[0] + base, t[1] + base, t[2] + base});
+  };
+  const SurfaceMesh outer = test::sphere_mesh(3, 3.0), inner = test::sphere_mesh(3, 1.0), bubble = shifted(test::sphere_mesh(2, 0.5), 2.0);
+  std::vector<Vec3> points = test::sample_with_normals(outer, 4000, 1).points;
+  const std::vector<Vec3> inner_points = test::sample_with_normals(inner, 500, 2).points;
+  points.insert(points.end(), inner_points.begin(), inner_points.end());
+
+  SurfaceMesh mesh = outer;
+  append(mesh, inner);
+  append(mesh, bubble);
+  const std::size_t data_faces = outer.faces.size() + inner.faces.size();
+  EXPECT_EQ(remove_components_off_points(mesh, points, 0.2), bubble.faces.size());
+  EXPECT_EQ(mesh.faces.size(), data_faces);
+  EXPECT_EQ(count_boundary_edges(mesh), 0u);
+  EXPECT_EQ(remove_components_off_points(mesh, points, 0.2), 0u) << "nothing left to remove";
+
+  SurfaceMesh alone = bubble;
+  EXPECT_EQ(remove_components_off_points(alone, points, 0.2), 0u) << "a mesh is never emptied";
+  EXPECT_THROW(remove_components_off_points(alone, points, 0.0), InvalidArgument);
+}
+
+// A sphere with one vertex pushed through to the far side: its fan of
+// facets crosses the sphere there. The repair cuts both places out and
+// fills them: closed again, nothing crossing, the rest untouched. A mesh
+// with no crossing is left as it is.
+TEST(IntersectionRepair, CutsOutCrossingFacetsAndClosesTheHoles) {
+  SurfaceMesh mesh = test::sphere_mesh(3, 1.0);
+  const SurfaceMesh clean = mesh;
+  IntersectionRepairStats none = repair_self_intersections(mesh);
+  EXPECT_EQ(none.intersecting_pairs, 0u);
+  EXPECT_EQ(none.rounds, 0);
+  EXPECT_EQ(mesh.faces.size(), clean.faces.size());
+
+  Vec3& poked = mesh.vertices[0];
+  poked = {-1.2 * poked[0], -1.2 * poked[1], -1.2 * poked[2]};
+  ASSERT_FALSE(self_intersecting_faces(mesh).empty());
+  const IntersectionRepairStats stats = repair_self_intersections(mesh);
+  EXPECT_GT(stats.intersecting_pairs, 0u);
+  EXPECT_EQ(stats.remaining_pairs, 0u);
+  EXPECT_TRUE(self_intersecting_faces(mesh).empty());
+  EXPECT_EQ(count_boundary_edges(mesh), 0u);
+  EXPECT_GT(stats.removed_facets, 0u);
+  EXPECT_LT(stats.removed_facets, clean.faces.size() / 4) << "the cut stays local";
+  for (const Vec3& v : mesh.vertices) EXPECT_LT(std::abs(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - 1.0), 0.1);
+
+  IntersectionRepairOptions bad;
+  bad.max_rounds = -1;
+  EXPECT_THROW(repair_self_intersections(mesh, bad), InvalidArgument);
+}
+
 // Two parallel polylines a separation apart: the shorter is dropped below
 // it, both kept above; an L meeting at a shared corner is kept; a trace
 // that doubles back on itself is dropped.
