@@ -9,6 +9,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from run import invariant  # noqa: E402
 
 
+VARIATION_NAMES = {"clean": "clean", "noise0.25": "0.25% noise of the diagonal", "noise0.5": "0.5% noise of the diagonal",
+                   "density3": "density varying 3:1", "density5": "density varying 5:1", "missing": "missing patches"}
+
+
 def failures(case, side):
     """run.py's invariants, for either side (run.py records ours only)."""
     return invariant({"kind": case["kind"], "components": case["components"]}, case["variation"], case[side])
@@ -34,7 +38,7 @@ def main():
         c["ours_failed"] = c["failed"]
     lines = ["# Generated corpus: invariants and accuracy, ours against PIF", "",
              f"Made by `{command}` (tests/corpus/generate.py, run.py). Each model is sampled with 50,000 points "
-             "(clean, 0.5% noise of the diagonal, missing patches), reconstructed at delta 5 by `reconstruct` "
+             f"({', '.join(sorted({VARIATION_NAMES.get(c['variation'], c['variation']) for c in cases}))}), reconstructed at delta 5 by `reconstruct` "
              "(ours) and `reconstruct --no-features` (PIF), and measured against its generating mesh. U is the "
              "average spacing of the clean sample. *Valid* is the invariant: a closed solid comes out closed "
              "(except with missing patches), with its component count (ours); an open sheet comes out open with "
@@ -57,7 +61,7 @@ def main():
     # Thickness curve.
     lines += ["## Validity by thickness", "",
               "Closed solids by their thinnest part (wall, bar, slot or gap, in average spacings of the clean "
-              "sample), clean and noisy samples.", "",
+              "sample), every variation but missing patches.", "",
               "| thinnest part (spacings) | cases | ours valid | PIF valid |", "|---|---|---|---|"]
     bins = [(0, 2), (2, 3), (3, 4), (4, 6), (6, 10), (10, 1e9)]
     for lo, hi in bins:
