@@ -20,6 +20,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
           {"enlarged_balls", m.enlarged_balls},
           {"protection_rounds_exhausted", m.protection_rounds_exhausted},
           {"protection_stopped", m.protection_stopped},
+          {"protection_queries", m.protection_queries},
           {"max_gap", length_json(m.max_gap, diagonal)},
           {"protected_segments", m.protected_segments},
           {"represented_segments", m.represented_segments},
@@ -37,6 +38,7 @@ Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
     bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_winding_repair = false, no_data_fit_retry = false, no_intersection_repair = false, allow_invalid = false, ascii = false;
+    double time_limit = 0;
     ReconstructOptions reconstruct;
   };
   auto o = std::make_shared<Options>();
@@ -96,9 +98,13 @@ Command add_reconstruct(CLI::App& app) {
                 "the new mesh is kept when it leaves a quarter fewer such points, no more off in all and none farther)");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
       ->capture_default_str();
-  sub->add_option("--protection-time-limit", o->reconstruct.protection_time_limit,
-                  "Seconds CGAL's protection of the feature polylines may take; past them the surface is meshed without it and the "
-                  "report says so (0: no limit)")
+sub->add_option("--protection-budget", o->reconstruct.protection_budget,
+                  "Ball-size queries CGAL's protection of the feature polylines may make per polyline point; past them the "
+                  "surface is meshed without it and the report says so (0: no limit)")
+      ->capture_default_str();
+  sub->add_option("--time-limit", o->time_limit,
+                  "Seconds the whole reconstruction may take; past them it stops with exit status 1 and writes nothing (0: no limit)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sub->add_option("--seed", o->reconstruct.seed, "Seed of the refinement's initial points")->capture_default_str();
   sub->add_flag("--no-intersection-repair", o->no_intersection_repair,
@@ -142,7 +148,21 @@ Command add_reconstruct(CLI::App& app) {
       if (options.feature_mode == FeatureMode::Given) options.given_features = read_polylines(o->features_file);
     }
     ProgressPrinter printer(common->quiet);
-    ReconstructResult result = reconstruct(points, options, printer.callback());
+    // The user's time limit is the only clock: the library decides by counts.
+    const Progress printed = printer.callback();
+    const double limit = o->time_limit;
+    bool timed_out = false;
+    const Progress progress = [&](const std::string& stage, double fraction) {
+      if (limit > 0 && seconds_since(start) > limit) return !(timed_out = true);
+      return printed(stage, fraction);
+    };
+    ReconstructResult result;
+    try {
+      result = reconstruct(points, options, progress);
+    } catch (const Cancelled&) {
+      if (!timed_out) throw;
+      throw Error(o->input + ": the reconstruction ran past --time-limit " + format_number(limit) + " s; nothing written");
+    }
     const bool crossing = options.repair_self_intersections ? result.intersection_repair.remaining_pairs > 0
                                                              : !self_intersecting_faces(result.mesh).empty();
     if (crossing && !o->allow_invalid)
@@ -196,7 +216,7 @@ Command add_reconstruct(CLI::App& app) {
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
           {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"poisson_screening", options.poisson_screening}, {"poisson_screening_noisy", options.poisson_screening_noisy}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
           {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"winding_repair", options.repair_enclosed_normals}, {"data_fit_retry", options.refit_off_data},
-          {"max_facets", options.max_facets}, {"protection_time_limit_s", options.protection_time_limit}, {"seed", options.seed}}},
+          {"max_facets", options.max_facets}, {"protection_budget", options.protection_budget}, {"time_limit_s", o->time_limit}, {"seed", options.seed}}},
         {"derived",
          {{"average_spacing", length_json(result.average_spacing, diagonal)},
           {"d_prime", length_json(result.d_prime, diagonal)},
@@ -238,8 +258,8 @@ Command add_reconstruct(CLI::App& app) {
     if (result.meshing.refinement_runaway && !common->quiet)
       std::fprintf(stderr, "reconstruct: warning: refinement was still adding vertices long after the expected count and was ended; check the mesh's topology\n");
     if (result.meshing.protection_stopped && !common->quiet)
-      std::fprintf(stderr, "reconstruct: warning: the protection of the feature polylines ran past %g s and was stopped; the mesh was made without it "
-                           "(raise --protection-time-limit)\n", options.protection_time_limit);
+      std::fprintf(stderr, "reconstruct: warning: the protection of the feature polylines ran past its budget of %g queries per polyline point "
+                           "and was stopped; the mesh was made without it (raise --protection-budget)\n", options.protection_budget);
     if (result.meshing.refinement_stalled && !common->quiet)
       std::fprintf(stderr, "reconstruct: warning: refinement stopped adding vertices and was ended early; check the mesh's topology\n");
     if (!common->quiet && result.normal_source == "input (re-oriented)")

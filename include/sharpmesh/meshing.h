@@ -94,13 +94,13 @@ struct ImplicitMeshingOptions {
   /// inserted densest first.
   std::vector<double> data_seed_spacings;
   std::uint32_t seed = 0;
-  /// Seconds CGAL's feature protection may take (0: no limit). Past them it
-  /// is stopped and the surface meshed without protection, every polyline
-  /// reported as uncovered: a safety net for a curve that CGAL walks for
-  /// ever without inserting anything (loop ends that miss each other by a
-  /// rounding error did, before they were welded). The whole refinement,
-  /// protection included, takes 3-4 s on fandisk at 200k points.
-  double protection_time_limit = 120;
+  /// Ball-size queries CGAL's feature protection may make (0: no limit).
+  /// Past them it is stopped and the surface meshed without protection,
+  /// every polyline reported as uncovered: a safety net for a curve that
+  /// CGAL walks for ever (loop ends that miss each other by a rounding
+  /// error did, before they were welded). A count, not a time, so that the
+  /// mesh does not depend on the machine.
+  std::size_t protection_query_limit = 0;
   void check() const;
 };
 
@@ -113,9 +113,10 @@ struct ImplicitMeshingResult {
   /// CGAL's protection stopped shrinking balls after its 29 rounds (balls of
   /// two polylines that keep intersecting; left as they were).
   bool protection_rounds_exhausted = false;
-  /// The protection ran past protection_time_limit and was stopped; the mesh
-  /// was made without protection.
+  /// The protection ran past protection_query_limit and was stopped; the
+  /// mesh was made without protection.
   bool protection_stopped = false;
+  std::size_t protection_queries = 0;    ///< ball-size queries of the last protection run
   std::size_t protected_segments = 0;    ///< segments between consecutive balls
   std::size_t represented_segments = 0;  ///< of those, edges of the output mesh
   double max_gap = 0;                    ///< largest polyline-to-surface distance measured at a ball

@@ -107,9 +107,12 @@ struct ReconstructOptions {
   /// off in all and none farther (beyond the thesis; with repair_normal_signs).
   bool refit_off_data = true;
   std::size_t max_facets = 5'000'000;
-  /// Seconds the feature protection may take before the surface is meshed
-  /// without it (ImplicitMeshingOptions::protection_time_limit; 0: no limit).
-  double protection_time_limit = 120;
+  /// Ball-size queries the feature protection may make per point of the
+  /// protected polylines before the surface is meshed without it
+  /// (ImplicitMeshingOptions::protection_query_limit; 0: no limit). Healthy
+  /// runs make a few per point (docs/design-notes.md, "Guards"): the default
+  /// stops only a protection that walks a curve for ever.
+  double protection_budget = 1000;
   std::uint32_t seed = 0;
   void check(std::size_t n) const;
 };

@@ -67,6 +67,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
     protection["enlarged_balls"] = m.enlarged_balls;
     protection["protection_rounds_exhausted"] = m.protection_rounds_exhausted;
     protection["protection_stopped"] = m.protection_stopped;
+    protection["protection_queries"] = m.protection_queries;
     protection["protected_segments"] = m.protected_segments;
     protection["represented_segments"] = m.represented_segments;
     protection["uncovered_gaps"] = m.uncovered.size();

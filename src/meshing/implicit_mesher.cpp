@@ -30,7 +30,6 @@
 #include <unordered_set>
 
 #include "eval/mesh_graph.h"
-#include "meshing/deadline.h"
 #include "pointset/cgal_bridge.h"
 #include "sharpmesh/meshing.h"
 
@@ -74,11 +73,23 @@ struct BallSizing {
       return -1;
     return distance(p, q);
   }
-  /// Set for the protection: each query checks its time limit.
-  const detail::Deadline* deadline = nullptr;
+  /// Set for the protection: queries are counted against a budget (the
+  /// stop flag is raised past it) and every 256th reports progress, which
+  /// lets the caller cancel.
+  struct QueryBudget {
+    std::atomic<bool>* stop = nullptr;
+    std::size_t limit = 0;  ///< 0: no limit
+    const Progress* progress = nullptr;
+    mutable std::atomic<std::size_t> count{0};
+  };
+  const QueryBudget* budget = nullptr;
 
   double operator()(const detail::Point3& p, int, const Domain::Index&) const {
-    if (deadline) deadline->expired();
+    if (budget) {
+      const std::size_t n = ++budget->count;
+      if (budget->limit > 0 && n > budget->limit) budget->stop->store(true, std::memory_order_release);
+      if (n % 256 == 0 && budget->progress) report_progress(*budget->progress, "protecting balls", 0.0);
+    }
     if (!protection.adapt_to_gap) return protection.ball_radius;
     const double gap = gap_at(detail::from_cgal(p));
     if (gap < 0) return protection.ball_radius;
@@ -129,8 +140,7 @@ NewVertexCluster densest_new_vertices(const C3t3& c3t3, double edge_length, std:
 // without adding vertices is stopped and its current mesh kept. This happens
 // with the manifold option when a non-manifold vertex next to protecting
 // balls cannot be repaired: CGAL then rescans it forever (couplingdown 50k).
-// Stalled: no new vertex for 20000 steps, or for max(20 s, the refinement
-// time until the last new vertex).
+// Stalled: no new vertex for kStallSteps steps.
 // Runaway: CGAL's manifold repair can keep inserting points around a vertex
 // next to protecting balls that it cannot make manifold, ever more slowly.
 // Every kRunawayWindow new vertices, the cell of the edge length holding
@@ -146,18 +156,13 @@ NewVertexCluster densest_new_vertices(const C3t3& c3t3, double edge_length, std:
 // `runaway_vertices` it ends as well. Both are counts, not times, so the
 // result does not depend on the machine.
 constexpr std::size_t kRunawayWindow = 1024;
+constexpr std::size_t kStallSteps = 20000;
 
 template <class Mesher>
 void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::size_t max_vertices, std::size_t runaway_vertices,
                      const Progress& progress, ImplicitMeshingResult& result, std::optional<Vec3>& runaway_spot) {
-  using Clock = std::chrono::steady_clock;
-  const bool debug = std::getenv("SHARPMESH_DEBUG_REFINE") != nullptr;
-  const auto start = Clock::now();
-  auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   mesher.initialize();
   std::size_t steps = 0, last_growth_step = 0, vertices = c3t3.triangulation().number_of_vertices();
-  Clock::time_point last_growth = start, last_report = start;
-  bool grew = false;
   std::size_t next_density_check = vertices + kRunawayWindow, stamp = 0;  // newest stamp before the window
   for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v)
     stamp = std::max(stamp, v->time_stamp());  // the initial vertices are not new
@@ -169,7 +174,6 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::
     if (now > vertices) {
       vertices = now;
       last_growth_step = steps;
-      grew = true;
     }
     if (max_vertices > 0 && now >= max_vertices) break;
     if (runaway_vertices > 0 && now >= runaway_vertices) {
@@ -180,7 +184,6 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::
     if (now >= next_density_check) {
       next_density_check = now + kRunawayWindow;
       const NewVertexCluster densest = densest_new_vertices(c3t3, edge_length, stamp);
-      if (debug) std::fprintf(stderr, "refine: %zu vertices, densest cell of the new ones %zu\n", now, densest.count);
       const bool piled = densest.count > kRunawayWindow / 8;
       if (piled && previous_pile && distance(*previous_pile, densest.centre) < edge_length) {
         result.refinement_runaway = true;
@@ -190,18 +193,15 @@ void refine_stepwise(Mesher& mesher, const C3t3& c3t3, double edge_length, std::
       }
       previous_pile = piled ? std::optional<Vec3>(densest.centre) : std::nullopt;
     }
-    if (steps % 64 != 0) continue;
-    const Clock::time_point t = Clock::now();
-    if (grew) last_growth = t, grew = false;
-    if (steps - last_growth_step > 20000 || seconds(last_growth, t) > std::max(20.0, seconds(start, last_growth))) {
+    // A stall is counted in steps, not seconds, so that the mesh does not
+    // depend on the machine: Mesh_3's manifold repair can step for ever
+    // without inserting a vertex.
+    if (steps - last_growth_step > kStallSteps) {
       result.refinement_stalled = true;
       break;
     }
-    if (seconds(last_report, t) > 0.25) {
-      last_report = t;
-      if (debug) std::fprintf(stderr, "refine: %zu steps, %zu vertices, %.1f s\n", steps, now, seconds(start, t));
+    if (steps % 1024 == 0)
       report_progress(progress, "refinement", max_vertices > 0 ? std::min(0.99, static_cast<double>(now) / static_cast<double>(max_vertices)) : 0.5);
-    }
   }
   result.refinement_steps = steps;
 }
@@ -449,8 +449,6 @@ void ImplicitMeshingOptions::check() const {
     throw InvalidArgument("data seed spacings must be empty or one per seed");
   for (double s : data_seed_spacings)
     if (!(s > 0) || !std::isfinite(s)) throw InvalidArgument("data seed spacings must be positive (got " + format_number(s) + ")");
-  if (!(protection_time_limit >= 0) || !std::isfinite(protection_time_limit))
-    throw InvalidArgument("protection time limit must be non-negative seconds (got " + format_number(protection_time_limit) + ")");
   if (!features.polylines.empty()) {
     if (!(features.ball_radius > 0) || !std::isfinite(features.ball_radius))
       throw InvalidArgument("protecting-ball radius must be positive (got " + format_number(features.ball_radius) + ")");
@@ -544,9 +542,12 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
     // instead of shrinking forever where two extracted polylines cross.
     const double minimal_radius = 0.05 * options.features.ball_radius;
     std::atomic<bool> stop{false};
-    const detail::Deadline deadline(stop, options.protection_time_limit);
+    BallSizing::QueryBudget budget;
+    budget.stop = &stop;
+    budget.limit = options.protection_query_limit;
+    budget.progress = &progress;
     BallSizing timed_sizing = sizing;
-    timed_sizing.deadline = &deadline;
+    timed_sizing.budget = &budget;
     CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, timed_sizing, minimal_radius,
                                                                                 max_vertices, &error, &stop);
     {
@@ -574,6 +575,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
       }
       if (messages.find_first_not_of(" \n") != std::string::npos) std::cerr << messages;
     }
+    result.protection_queries = budget.count.load();
     if (stop.load()) throw ProtectionStopped{};
     for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v) {
       if (c3t3.in_dimension(v) > 1) continue;
@@ -765,7 +767,7 @@ ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, cons
     } catch (const ProtectionStopped&) {
       protection_stopped = true;
       drop_all();
-      report_progress(progress, "refinement (again, without protection: it ran past its time limit)", 0.0);
+      report_progress(progress, "refinement (again, without protection: it ran past its query budget)", 0.0);
       continue;
     }
     if (last) {

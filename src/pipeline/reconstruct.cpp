@@ -22,8 +22,9 @@ ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOp
 }  // namespace
 
 void ReconstructOptions::check(std::size_t n) const {
-  if (!(protection_time_limit >= 0) || !std::isfinite(protection_time_limit))
-    throw InvalidArgument("protection time limit must be non-negative seconds (got " + format_number(protection_time_limit) + ")");
+  if (!(protection_budget >= 0) || !std::isfinite(protection_budget))
+    throw InvalidArgument("protection budget must be a non-negative number of queries per polyline point (got " +
+                          format_number(protection_budget) + ")");
   if (!(delta > 0) || !std::isfinite(delta))
     throw InvalidArgument("delta must be positive (got " + format_number(delta) + ")");
   if (!(ball_radius > 0 && ball_radius <= 2))
@@ -429,10 +430,14 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     ImplicitMeshingOptions meshing;
     meshing.criteria = out.criteria;
     meshing.max_facets = options.max_facets;
-    meshing.protection_time_limit = options.protection_time_limit;
     meshing.expected_facets = estimate;
     meshing.seed = options.seed;
     meshing.features.polylines = out.features.graph.polylines;
+    if (options.protection_budget > 0) {
+      std::size_t polyline_points = 0;
+      for (const Polyline& line : meshing.features.polylines) polyline_points += line.size();
+      meshing.protection_query_limit = static_cast<std::size_t>(options.protection_budget * static_cast<double>(polyline_points)) + 1;
+    }
     meshing.features.ball_radius = options.ball_radius * out.d_prime;
     meshing.features.adapt_to_gap = options.adapt_balls_to_gap;
     // Two polylines (or two stretches of one) closer than two spacings get balls

@@ -149,6 +149,8 @@ PY
     cloud 100 c.xyz; mkdir ro; chmod a-w ro
     expect_error 2 "not writable" "ro/out.ply" $bin clean c.xyz -o ro/out.ply ;;
   bad-option) expect_error 2 "banana" "" $bin reconstruct --delta banana ;;
+  time-limit)  # the user's clock: past it, exit 1 and nothing written (reading 20k points alone takes longer than 1 ms)
+    cloud 20000 c.xyz; expect_error 1 "time-limit" "out.ply" $bin reconstruct c.xyz -o out.ply --time-limit 0.001 ;;
   make-scene-eval)  # issue 5: a small scene, and eval-stereo of its own ground truth is 100% everywhere
     $bin make-scene sc --views 6 --width 160 --height 120 --samples 3000 --seed 2 -q --report r.json || fail "make-scene failed"
     python3 -c "import json; r=json.load(open('r.json')); assert r['counts']['tracks']>500 and r['reprojection_pixels']['rms']<0.75, r" || fail "bad scene report"

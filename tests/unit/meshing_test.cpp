@@ -157,10 +157,10 @@ TEST(ImplicitMeshing, DataSeedsKeepAFinThinnerThanTheFacets) {
   EXPECT_FALSE(t.self_intersecting);
 }
 
-// A protection that runs past its time limit (a stand-in for a curve CGAL
+// A protection that runs past its query budget (a stand-in for a curve CGAL
 // walks for ever) is stopped; the cube is meshed without it, its edges are
 // reported as uncovered, and the mesh is still closed and manifold.
-TEST(ImplicitMeshing, ProtectionPastItsTimeLimitIsStoppedAndReported) {
+TEST(ImplicitMeshing, ProtectionPastItsQueryBudgetIsStoppedAndReported) {
   const Cube surface;
   ImplicitMeshingOptions options;
   options.criteria.edge_length = 0.5;
@@ -169,10 +169,11 @@ TEST(ImplicitMeshing, ProtectionPastItsTimeLimitIsStoppedAndReported) {
   options.features.ball_radius = 0.15;
   const ImplicitMeshingResult protected_cube = mesh_implicit_surface(surface, options);
   EXPECT_FALSE(protected_cube.protection_stopped);
+  EXPECT_GT(protected_cube.protection_queries, 12u);
   EXPECT_GT(protected_cube.protected_segments, 12u);
   EXPECT_EQ(protected_cube.represented_segments, protected_cube.protected_segments);
 
-  options.protection_time_limit = 1e-9;  // up at the first ball
+  options.protection_query_limit = 1;  // up at the second ball
   const ImplicitMeshingResult stopped = mesh_implicit_surface(surface, options);
   EXPECT_TRUE(stopped.protection_stopped);
   EXPECT_EQ(stopped.protected_segments, 0u);
@@ -180,9 +181,6 @@ TEST(ImplicitMeshing, ProtectionPastItsTimeLimitIsStoppedAndReported) {
   const TopologyReport t = check_topology(stopped.mesh);
   EXPECT_TRUE(t.closed());
   EXPECT_TRUE(t.manifold());
-
-  options.protection_time_limit = -1;
-  EXPECT_THROW(mesh_implicit_surface(surface, options), InvalidArgument);
 }
 
 TEST(ImplicitMeshing, RejectsNonFiniteDataSeeds) {
