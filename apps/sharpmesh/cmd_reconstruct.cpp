@@ -98,7 +98,7 @@ Command add_reconstruct(CLI::App& app) {
                 "the new mesh is kept when it leaves a quarter fewer such points, no more off in all and none farther)");
   sub->add_option("--max-facets", o->reconstruct.max_facets, "Refuse to start when the estimated facet count is above this (0: no limit)")
       ->capture_default_str();
-sub->add_option("--protection-budget", o->reconstruct.protection_budget,
+  sub->add_option("--protection-budget", o->reconstruct.protection_budget,
                   "Ball-size queries CGAL's protection of the feature polylines may make per polyline point; past them the "
                   "surface is meshed without it and the report says so (0: no limit)")
       ->capture_default_str();

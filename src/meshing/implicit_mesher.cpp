@@ -546,9 +546,9 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
     budget.stop = &stop;
     budget.limit = options.protection_query_limit;
     budget.progress = &progress;
-    BallSizing timed_sizing = sizing;
-    timed_sizing.budget = &budget;
-    CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, timed_sizing, minimal_radius,
+    BallSizing budgeted_sizing = sizing;
+    budgeted_sizing.budget = &budget;
+    CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, budgeted_sizing, minimal_radius,
                                                                                 max_vertices, &error, &stop);
     {
       // CGAL writes "features protection has reached maximal number of

@@ -154,6 +154,15 @@ std::vector<std::uint32_t> cvcm_normals(PointSet& cloud, const FeatureResult& fe
   return isotropic;
 }
 
+/// Distance beyond which an input point is off the mesh, or a mesh
+/// component off the data: the refinement may leave the implicit surface by
+/// its surface-distance criterion (0.6 d', 2.1 spacings at delta 3.5) and no
+/// more, plus three noise deviations.
+double off_data_distance(const ReconstructResult& r, const ReconstructOptions& options) {
+  const double noise = options.feature_mode == FeatureMode::Extract ? r.features.noise_estimate : 0.0;
+  return std::max(1.5 * r.average_spacing, r.criteria.distance) + 3 * noise;
+}
+
 /// After orientation: the crease-aware normals at `ids` (see cvcm_normals),
 /// each taking the sign of the oriented normal it replaces. They are not
 /// oriented themselves: at a crease they turn by up to 90 degrees from one
@@ -476,12 +485,8 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     }
     // Closed or open, a component whose vertices mostly lie off the data is
     // the implicit function's, not the data's (a bubble in a gap between
-    // nested solids); the off-data distance is the data fit's below.
-    {
-      const double noise = options.feature_mode == FeatureMode::Extract ? out.features.noise_estimate : 0.0;
-      out.dataless_facets = remove_components_off_points(
-          out.mesh, input.points, std::max(1.5 * out.average_spacing, out.criteria.distance) + 3 * noise);
-    }
+    // nested solids).
+    out.dataless_facets = remove_components_off_points(out.mesh, input.points, off_data_distance(out, options));
     if (options.trim_distance > 0) {
       StageTimer timer(out.stages, retry_prefix + "trim");
       out.trimmed_facets =
@@ -508,9 +513,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
   // Measured whether or not a retry may run (0.19-0.24 s on fandisk 200k).
   {
     const double noise = options.feature_mode == FeatureMode::Extract ? result.features.noise_estimate : 0.0;
-    // The refinement may leave the implicit surface by its surface-distance
-    // criterion (0.6 d', 2.1 spacings at delta 3.5) and no more.
-    const double off_distance = std::max(1.5 * result.average_spacing, result.criteria.distance) + 3 * noise;
+    const double off_distance = off_data_distance(result, options);
     result.off_data_distance = off_distance;
     detail::DataFit fit;
     std::vector<Vec3> retry_normals;  // the normals of the mesh kept, when a retry's
