@@ -132,6 +132,22 @@ std::size_t orient_normals_mst(PointSet& points, const NormalOrientationOptions&
 /// oriented (each connected component of the k-nearest-neighbour graph from
 /// its highest point, normal up); returns the number of components.
 std::size_t orient_normals_tangent_mst(PointSet& points, int k = 18, const Progress& progress = {});
+/// The same, with the signs of some points decided beforehand (`anchors`:
+/// +1 keep, -1 flip, 0 undecided; one per point): the tree grows from all of
+/// them at once, so each undecided point takes its sign from the anchors it
+/// is best connected to; components without an anchor start from their
+/// highest point as above.
+std::size_t orient_normals_tangent_mst(PointSet& points, int k, const std::vector<signed char>& anchors,
+                                       const Progress& progress = {});
+
+/// Signs from the cloud's occupancy (beyond the thesis, issue 36): cells of
+/// size `cell` holding a point (dilated by one cell) wall off the inside, a
+/// flood fill from the border marks the outside. +1 where the normal's line
+/// reaches the outside ahead of the point and an enclosed empty cell behind
+/// it (within `reach`), -1 the other way round, 0 elsewhere (thin material,
+/// clouds whose inside the fill reaches). The cell grows when the grid would
+/// exceed 64 cells per point (10 million at least).
+std::vector<signed char> exterior_side_votes(const PointSet& cloud, double cell, double reach);
 
 /// Beyond the thesis: after an MST orientation, flips the patches of
 /// normals that the creases around them show inverted (an MST inverts a

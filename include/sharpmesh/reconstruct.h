@@ -136,6 +136,7 @@ struct ReconstructResult {
   /// CVCM normals replaced by jet normals where the convolved VCM is
   /// isotropic (lambda0/lambda1 < 20: thin walls, creases, corners).
   std::size_t isotropic_cvcm_normals = 0;
+  std::size_t anchored_normals = 0;  ///< normals whose sign the occupancy decided before the MST (exterior_side_votes)
   std::size_t patch_flipped_normals = 0;  ///< normals of patches the creases showed inverted after the MST (repair_inverted_patches)
   std::size_t enclosed_flipped_normals = 0;  ///< normals of regions the rest of the cloud encloses on their outer side (repair_enclosed_normals)
   std::size_t sharpened_normals = 0;  ///< isotropic-CVCM normals replaced by crease-aware ones (shifted planes)

@@ -343,9 +343,18 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     } else {
       estimate_normals(oriented, options.normals, progress);
     }
-    // Tangent-aware MST (orientation.cpp): no flips across thin walls.
-    orient_normals_tangent_mst(oriented, options.orientation.k, progress);
     const bool automatic = options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract;
+    // Tangent-aware MST (orientation.cpp): no flips across thin walls.
+    // Automatic normals: anchored where the occupancy tells outside from
+    // inside (exterior_votes.cpp), so that no knife edge inverts a face.
+    std::vector<signed char> anchors;
+    if (automatic) {
+      const double noise = result.features.noise_estimate;
+      const double cell = 1.0 * result.average_spacing;
+      anchors = exterior_side_votes(oriented, cell, 6 * cell + 4 * noise);
+      result.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
+    }
+    orient_normals_tangent_mst(oriented, options.orientation.k, anchors, progress);
     // The crease points' jet normals carried the MST across the creases;
     // the anisotropic CVCM normals vote on it (patch_orientation.cpp).
     if (from_cvcm && automatic)

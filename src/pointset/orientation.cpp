@@ -25,10 +25,15 @@ struct Edge {
 }  // namespace
 
 std::size_t orient_normals_tangent_mst(PointSet& points, int k, const Progress& progress) {
+  return orient_normals_tangent_mst(points, k, {}, progress);
+}
+
+std::size_t orient_normals_tangent_mst(PointSet& points, int k, const std::vector<signed char>& anchors, const Progress& progress) {
   check_point_set(points, 4, "normal orientation");
   NormalOrientationOptions{k, false}.check(points.size());
   if (!points.has_normals()) throw InvalidArgument("normal orientation: the points have no normals to orient");
   const std::size_t n = points.size();
+  if (!anchors.empty() && anchors.size() != n) throw InvalidArgument("normal orientation: one anchor vote per point, or none");
   report_progress(progress, "normal orientation", 0.0);
   const detail::KnnIndex index(points.points);
   std::vector<std::vector<Edge>> graph(n);
@@ -52,21 +57,13 @@ std::size_t orient_normals_tangent_mst(PointSet& points, int k, const Progress& 
     }
   }
   report_progress(progress, "normal orientation", 0.4);
-  // Prim's algorithm from the highest point of each component, whose normal
-  // is turned upwards (as CGAL does for its single seed).
+  // Prim's algorithm: from every anchored point at once (its sign decided
+  // by its vote), then from the highest point of each component no anchor
+  // reaches, whose normal is turned upwards (as CGAL does for its single seed).
   std::vector<char> done(n, 0);
-  std::vector<std::uint32_t> order(n);
-  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return points.points[a][2] > points.points[b][2]; });
   using Item = std::pair<float, std::pair<std::uint32_t, std::uint32_t>>;  // weight, (from, to)
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  std::size_t components = 0;
-  for (std::uint32_t seed : order) {
-    if (done[seed]) continue;
-    ++components;
-    if (points.normals[seed][2] < 0) points.normals[seed] = -1.0 * points.normals[seed];
-    done[seed] = 1;
-    for (const Edge& e : graph[seed]) queue.push({e.weight, {seed, e.to}});
+  auto grow = [&]() {
     while (!queue.empty()) {
       const auto [from, to] = queue.top().second;
       queue.pop();
@@ -76,6 +73,28 @@ std::size_t orient_normals_tangent_mst(PointSet& points, int k, const Progress& 
       for (const Edge& e : graph[to])
         if (!done[e.to]) queue.push({e.weight, {to, e.to}});
     }
+  };
+  std::size_t components = 0;
+  for (std::uint32_t i = 0; i < anchors.size(); ++i) {
+    if (anchors[i] == 0) continue;
+    if (anchors[i] < 0) points.normals[i] = -1.0 * points.normals[i];
+    done[i] = 1;
+    for (const Edge& e : graph[i]) queue.push({e.weight, {i, e.to}});
+  }
+  if (!queue.empty()) {
+    ++components;
+    grow();
+  }
+  std::vector<std::uint32_t> order(n);
+  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return points.points[a][2] > points.points[b][2]; });
+  for (std::uint32_t seed : order) {
+    if (done[seed]) continue;
+    ++components;
+    if (points.normals[seed][2] < 0) points.normals[seed] = -1.0 * points.normals[seed];
+    done[seed] = 1;
+    for (const Edge& e : graph[seed]) queue.push({e.weight, {seed, e.to}});
+    grow();
   }
   report_progress(progress, "normal orientation", 1.0);
   return components;

@@ -312,6 +312,37 @@ TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
   std::printf("flipped normals on a thin slab: tangent MST %.4f, CGAL MST %.4f\n", ours_flipped, cgal_flipped);
 }
 
+// The occupancy decides signs on a closed solid and nowhere on an open sheet;
+// an MST grown from those anchors orients every normal outwards (no global
+// flip left to undo).
+TEST(Normals, ExteriorVotesAnchorTheMstOutwards) {
+  const PointSet truth = test::sample_with_normals(test::cube_mesh(0.5), 20000, 7);
+  const double spacing = average_spacing(truth, 6);
+  PointSet flipped = truth;
+  for (std::size_t i = 0; i < flipped.size(); i += 2) flipped.normals[i] = -1.0 * flipped.normals[i];
+  const std::vector<signed char> votes = exterior_side_votes(flipped, 1.5 * spacing, 9 * spacing);
+  std::size_t decided = 0;
+  for (std::size_t i = 0; i < votes.size(); ++i) {
+    if (votes[i] == 0) continue;
+    ++decided;
+    EXPECT_EQ(votes[i], i % 2 == 0 ? -1 : 1) << i;
+  }
+  EXPECT_GT(decided, truth.size() * 8 / 10);
+  PointSet estimated = truth;
+  estimate_normals(estimated, {});
+  orient_normals_tangent_mst(estimated, 18, exterior_side_votes(estimated, 1.5 * spacing, 9 * spacing));
+  std::size_t inwards = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i) inwards += dot(estimated.normals[i], truth.normals[i]) < 0;
+  EXPECT_LT(inwards, truth.size() / 200);
+
+  PointSet sheet;
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 100; ++j) sheet.points.push_back({i / 100.0, j / 100.0, 0.0}), sheet.normals.push_back({0, 0, 1});
+  for (signed char v : exterior_side_votes(sheet, 0.01, 0.06)) EXPECT_EQ(v, 0);
+  EXPECT_THROW(exterior_side_votes(sheet, 0, 0.06), InvalidArgument);
+  EXPECT_THROW(orient_normals_tangent_mst(sheet, 18, std::vector<signed char>(3, 0)), InvalidArgument);
+}
+
 // The slanted face of a tetrahedron inverted, as an MST leaves it when the
 // crease points' normals turn the short way across its acute edges: the
 // crease votes flip it back; a consistent cube and tetrahedron stay as they are.
