@@ -347,12 +347,17 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     // Tangent-aware MST (orientation.cpp): no flips across thin walls.
     // Automatic normals: anchored where the occupancy tells outside from
     // inside (exterior_votes.cpp), so that no knife edge inverts a face.
+    // Cells of one spacing resolve thin roofs; where a random sampling's
+    // gaps let the outside in (a cube at 20k points), cells of 1.5 spacings
+    // still wall it off.
     std::vector<signed char> anchors;
     if (automatic) {
       const double noise = result.features.noise_estimate;
-      const double cell = 1.0 * result.average_spacing;
-      anchors = exterior_side_votes(oriented, cell, 6 * cell + 4 * noise);
-      result.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
+      for (double cell : {result.average_spacing, 1.5 * result.average_spacing}) {
+        anchors = exterior_side_votes(oriented, cell, 6 * cell + 4 * noise);
+        result.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
+        if (result.anchored_normals > 0) break;
+      }
     }
     orient_normals_tangent_mst(oriented, options.orientation.k, anchors, progress);
     // The crease points' jet normals carried the MST across the creases;
