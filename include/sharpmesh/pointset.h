@@ -136,7 +136,8 @@ std::size_t orient_normals_tangent_mst(PointSet& points, int k = 18, const Progr
 /// +1 keep, -1 flip, 0 undecided; one per point): the tree grows from all of
 /// them at once, so each undecided point takes its sign from the anchors it
 /// is best connected to; components without an anchor start from their
-/// highest point as above.
+/// highest point as above. Returns the number of trees grown (all the
+/// anchors together count as one).
 std::size_t orient_normals_tangent_mst(PointSet& points, int k, const std::vector<signed char>& anchors,
                                        const Progress& progress = {});
 
