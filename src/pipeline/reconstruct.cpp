@@ -252,6 +252,21 @@ std::size_t repair_normal_signs(PointSet& oriented, std::unique_ptr<ImplicitSurf
   return flipped;
 }
 
+/// Signs from the cloud's occupancy (exterior_votes.cpp) for the tangent MST
+/// to grow from, so that no knife edge (a conical roof's rim) inverts the
+/// face behind it. Cells of one spacing resolve thin roofs; where a random
+/// sampling's gaps let the outside in (a cube at 20k points), cells of 1.5
+/// spacings still wall it off. All zero when neither encloses anything
+/// (open clouds).
+std::vector<signed char> occupancy_anchors(const PointSet& cloud, double average_spacing, double noise) {
+  std::vector<signed char> anchors;
+  for (double cell : {average_spacing, 1.5 * average_spacing}) {
+    anchors = exterior_side_votes(cloud, cell, 6 * cell + 4 * noise);
+    if (std::any_of(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; })) break;
+  }
+  return anchors;
+}
+
 /// Normals read from a file are checked before Poisson trusts them: files
 /// in the wild carry zero normals (CGAL's blobby.xyz: all of them) or
 /// normals whose lines are right but whose signs flip from face to face
@@ -259,7 +274,9 @@ std::size_t repair_normal_signs(PointSet& oriented, std::unique_ptr<ImplicitSurf
 /// broke up into shreds along the grooves). Usable normals are made unit;
 /// when fewer than half are usable they are ignored and estimated instead.
 /// Otherwise PCA normals, which turn smoothly across creases, are oriented
-/// by the tangent MST (App. A.8) and compared with the file's signs: at
+/// by the tangent MST (App. A.8), anchored by the occupancy as the
+/// estimated normals are (a knife edge would otherwise invert a face and
+/// the file's right signs look inconsistent), and compared with the file's signs: at
 /// between 10% and 90% agreement the signs are inconsistent, and each input
 /// normal takes the sign of the oriented PCA normal (its line is kept).
 /// Consistently inward normals, near 0%, are kept as given.
@@ -283,7 +300,9 @@ InputNormals check_input_normals(PointSet& cloud, const ReconstructOptions& opti
   pca.method = NormalMethod::Pca;
   pca.k = std::min(pca.k, last);
   estimate_normals(reference, pca, progress);
-  orient_normals_tangent_mst(reference, std::min(options.orientation.k, last), progress);
+  const std::vector<signed char> anchors =
+      occupancy_anchors(reference, average_spacing(reference, std::min(options.spacing_k, last), progress), 0.0);
+  orient_normals_tangent_mst(reference, std::min(options.orientation.k, last), anchors, progress);
   std::size_t agree = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) agree += dot(reference.normals[i], cloud.normals[i]) > 0;
   agreement = static_cast<double>(agree) / static_cast<double>(usable);
@@ -345,19 +364,11 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     }
     const bool automatic = options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract;
     // Tangent-aware MST (orientation.cpp): no flips across thin walls.
-    // Automatic normals: anchored where the occupancy tells outside from
-    // inside (exterior_votes.cpp), so that no knife edge inverts a face.
-    // Cells of one spacing resolve thin roofs; where a random sampling's
-    // gaps let the outside in (a cube at 20k points), cells of 1.5 spacings
-    // still wall it off.
+    // Automatic normals: anchored by the occupancy (occupancy_anchors).
     std::vector<signed char> anchors;
     if (automatic) {
-      const double noise = result.features.noise_estimate;
-      for (double cell : {result.average_spacing, 1.5 * result.average_spacing}) {
-        anchors = exterior_side_votes(oriented, cell, 6 * cell + 4 * noise);
-        result.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
-        if (result.anchored_normals > 0) break;
-      }
+      anchors = occupancy_anchors(oriented, result.average_spacing, result.features.noise_estimate);
+      result.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
     }
     orient_normals_tangent_mst(oriented, options.orientation.k, anchors, progress);
     // The crease points' jet normals carried the MST across the creases;
