@@ -30,6 +30,7 @@ def orient(vertices, faces, sign):
         for u, v in ((a, b), (b, c), (c, a)):
             edges.setdefault((min(u, v), max(u, v)), []).append(f)
     seen = np.zeros(len(faces), bool)
+    patches = []
     for start in range(len(faces)):
         if seen[start]:
             continue
@@ -52,6 +53,34 @@ def orient(vertices, faces, sign):
         flipped_from_given = (faces[patch] != given[patch]).any(axis=1)
         votes = np.where(flipped_from_given, -1.0, 1.0) * sign[patch] * area[patch]
         if votes.sum() < 0:
+            faces[patch] = faces[patch][:, ::-1]
+        patches.append(patch)
+    return _orient_by_nesting(vertices, faces, patches)
+
+
+def _winding_number(point, vertices, faces):
+    """Generalized winding number of a closed triangle patch at `point`
+    (the solid angles of Van Oosterom and Strackee, 1983)."""
+    a, b, c = (vertices[faces[:, k]] - point for k in range(3))
+    la, lb, lc = (np.linalg.norm(x, axis=1) for x in (a, b, c))
+    numerator = np.einsum("ij,ij->i", a, np.cross(b, c))
+    denominator = la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", b, c) * la + np.einsum("ij,ij->i", c, a) * lb
+    return np.arctan2(numerator, denominator).sum() / (2 * np.pi)
+
+
+def _orient_by_nesting(vertices, faces, patches):
+    """A shell inside an odd number of others bounds a cavity: its faces
+    point into it (negative enclosed volume); gmsh's oriented boundaries
+    give a cavity's shell the outer orientation (a hollow box with a ball
+    inside came out with its volume counted twice)."""
+    if len(patches) < 2:
+        return faces
+    for i, patch in enumerate(patches):
+        point = vertices[faces[patch[0]][0]]
+        depth = sum(abs(_winding_number(point, vertices, faces[other])) > 0.5 for j, other in enumerate(patches) if j != i)
+        a, b, c = (vertices[faces[patch][:, k]] for k in range(3))
+        volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
+        if (volume > 0) != (depth % 2 == 0):
             faces[patch] = faces[patch][:, ::-1]
     return faces
 
