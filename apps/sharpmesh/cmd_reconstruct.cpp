@@ -37,7 +37,7 @@ nlohmann::json protection_report(const ReconstructResult& r, double diagonal) {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, normals = "auto", features_file, sharp_edges_out;
-    bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_winding_repair = false, no_data_fit_retry = false, no_intersection_repair = false, allow_invalid = false, ascii = false;
+    bool no_features = false, fixed_balls = false, no_flattening = false, no_snapping = false, no_sign_repair = false, no_winding_repair = false, no_thin_vertices = false, no_anchors = false, no_data_fit_retry = false, no_intersection_repair = false, allow_invalid = false, ascii = false;
     double time_limit = 0;
     ReconstructOptions reconstruct;
   };
@@ -89,6 +89,12 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_flag("--recompute-normals", o->reconstruct.recompute_normals, "Ignore the input's normals and estimate new ones");
   sub->add_flag("--no-sign-repair", o->no_sign_repair,
                 "Keep the normals the Poisson function contradicts (by default they are flipped and Poisson solved again, up to 3 times)");
+  sub->add_flag("--no-orientation-anchors", o->no_anchors,
+                "Grow the normal orientation's MST from one seed per component, not from the signs the cloud's occupancy and sheet parity "
+                "decide (automatic normals with features only)");
+  sub->add_flag("--no-thin-vertices", o->no_thin_vertices,
+                "Solve Poisson on the samples' own triangulation only, without vertices half-way across parts and gaps 1-6 avg thick "
+                "(without them the function is flat inside a thin plate and its zero set wanders)");
   sub->add_flag("--no-winding-repair", o->no_winding_repair,
                 "Keep the estimated normals of regions whose outer side the rest of the cloud encloses, by its generalized winding number "
                 "(by default they are flipped before Poisson; automatic normals with features only)");
@@ -126,6 +132,8 @@ Command add_reconstruct(CLI::App& app) {
     options.repair_normal_signs = !o->no_sign_repair;
     options.refit_off_data = !o->no_data_fit_retry;
     options.repair_enclosed_normals = !o->no_winding_repair;
+    options.thin_part_vertices = !o->no_thin_vertices;
+    options.anchor_orientation = !o->no_anchors;
     options.flatten_features = !o->no_flattening;
     options.snap_vertices = !o->no_snapping;
     options.repair_self_intersections = !o->no_intersection_repair;
@@ -215,7 +223,7 @@ Command add_reconstruct(CLI::App& app) {
           {"delta", options.delta}, {"spacing_k", options.spacing_k}, {"ball_radius", options.ball_radius},
           {"adapt_balls_to_gap", options.adapt_balls_to_gap},
           {"trim", options.trim_distance}, {"poisson_spacing", options.poisson_spacing}, {"poisson_thinning", options.poisson_thinning}, {"poisson_screening", options.poisson_screening}, {"poisson_screening_noisy", options.poisson_screening_noisy}, {"seed_spacing", options.data_seed_spacing}, {"flattening", options.flatten_features}, {"snapping", options.snap_vertices}, {"normals", o->normals}, {"normal_k", options.normals.k},
-          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"winding_repair", options.repair_enclosed_normals}, {"data_fit_retry", options.refit_off_data},
+          {"orient_k", options.orientation.k}, {"recompute_normals", options.recompute_normals}, {"sign_repair", options.repair_normal_signs}, {"winding_repair", options.repair_enclosed_normals}, {"thin_vertices", options.thin_part_vertices}, {"orientation_anchors", options.anchor_orientation}, {"data_fit_retry", options.refit_off_data},
           {"max_facets", options.max_facets}, {"protection_budget", options.protection_budget}, {"time_limit_s", o->time_limit}, {"seed", options.seed}}},
         {"derived",
          {{"average_spacing", length_json(result.average_spacing, diagonal)},
@@ -229,7 +237,7 @@ Command add_reconstruct(CLI::App& app) {
          {{"input_points", result.input_points}, {"duplicate_points", result.duplicate_points}, {"points_used", result.used_points}, {"poisson_points", result.poisson_points}, {"normal_agreement", result.normal_agreement},
           {"normals_estimated", result.normals_estimated}, {"normal_source", result.normal_source}, {"input_normal_agreement", result.input_normal_agreement}, {"isotropic_cvcm_normals", result.isotropic_cvcm_normals}, {"patch_flipped_normals", result.patch_flipped_normals}, {"enclosed_flipped_normals", result.enclosed_flipped_normals}, {"sharpened_normals", result.sharpened_normals}, {"sign_repaired_normals", result.sign_repaired_normals},
           {"vertices", result.mesh.vertices.size()}, {"facets", result.mesh.faces.size()},
-          {"anchored_normals", result.anchored_normals}, {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"poisson_screening", result.poisson_screening}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"snapped_off_data", result.snapped_off_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"dataless_facets", result.dataless_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
+          {"anchored_normals", result.anchored_normals}, {"thin_part_vertices", result.thin_part_vertices}, {"restricted_to_data", result.restricted}, {"data_seeds", m.data_seeds}, {"thin_points", result.thin_points}, {"flattened_vertices", result.flattened_vertices}, {"unflattened_vertices", result.unflattened_vertices}, {"poisson_screening", result.poisson_screening}, {"snapped_corners", result.snapped_corners}, {"snapped_to_data", result.snapped_to_data}, {"snapped_off_data", result.snapped_off_data}, {"unsnapped_vertices", result.unsnapped_vertices}, {"trimmed_facets", result.trimmed_facets}, {"dataless_facets", result.dataless_facets}, {"clipped_facets", result.clipped_facets}, {"boundary_edges", result.boundary_edges}}},
         {"stages", stages_json(stages)},
         {"seconds", seconds_since(start)}};
     const double spacing = result.average_spacing > 0 ? result.average_spacing : 1.0;

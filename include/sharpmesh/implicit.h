@@ -69,6 +69,13 @@ struct PoissonOptions {
   double screening = 12;
   /// Average spacing of the samples, for `screening`; 0 = measured here (k = 6).
   double average_spacing = 0;
+  /// Extra vertices of the function's triangulation, carrying no normal
+  /// (beyond the thesis, issue 36). CGAL's function is linear on Delaunay
+  /// cells of the samples, and its refinement leaves a plate or a slot a few
+  /// spacings thick without an inner vertex: the function is then flat
+  /// between the two sheets and its zero set wanders. A vertex half-way
+  /// between them gives the function its inner value (thin_part_vertices).
+  std::vector<Vec3> extra_vertices;
   void check() const;
 };
 /// How well the solved function fits the normals.

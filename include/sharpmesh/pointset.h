@@ -150,6 +150,25 @@ std::size_t orient_normals_tangent_mst(PointSet& points, int k, const std::vecto
 /// exceed 64 cells per point (10 million at least).
 std::vector<signed char> exterior_side_votes(const PointSet& cloud, double cell, double reach);
 
+/// Signs from sheet parity (beyond the thesis, issue 36), for material too
+/// thin to enclose an empty cell (a plate two spacings thick): along each
+/// normal line the points within about 1.4 `spacing`s of it group into the
+/// sheets the line crosses before it reaches the outside (an occupancy flood
+/// fill as above); +1 where the side ahead meets the outside after an even
+/// count and the side behind after an odd one, -1 the other way round, 0
+/// where the counts disagree, a sheet is grazed, or the cloud is open.
+/// `noise`: the points' deviation from their surface (widens the gap that
+/// separates two sheets).
+std::vector<signed char> sheet_parity_votes(const PointSet& cloud, double spacing, double noise);
+
+/// Sign votes (+1 keep, -1 flip, 0 undecided; one per point) made
+/// consistent patch by patch (beyond the thesis, issue 36): the plain
+/// tangent MST's normals are grouped into smooth patches along tangent
+/// chords, and every point of a patch takes the sign two thirds of the
+/// patch's votes (at least three) give; other points get 0. A stray wrong
+/// vote no longer seeds a tree of its own. `k`: the MST's neighbours.
+std::vector<signed char> patch_consensus_votes(const PointSet& cloud, const std::vector<signed char>& votes, int k = 18);
+
 /// Beyond the thesis: after an MST orientation, flips the patches of
 /// normals that the creases around them show inverted (an MST inverts a
 /// whole face beyond an acute crease, whose consistent normals have a

@@ -99,6 +99,13 @@ struct ReconstructOptions {
   /// regions whose outer side the rest of the cloud encloses, by its
   /// generalized winding number (repair_enclosed_normals; beyond the thesis).
   bool repair_enclosed_normals = true;
+  /// With automatic normals and extracted features: grow the tangent MST
+  /// from the signs the occupancy and the sheet parity decide
+  /// (occupancy_anchors; beyond the thesis, issue 36), not from one seed.
+  bool anchor_orientation = true;
+  /// Poisson vertices half-way across material and gaps 1-6 spacings thick
+  /// (thin_part_vertices; beyond the thesis, issue 36).
+  bool thin_part_vertices = true;
   /// After meshing, when input points lie farther than max(1.5 avg, the
   /// surface-distance criterion) + 3 x the noise from the mesh with normals
   /// against its closest facets (from 10 points or 0.02%), flip their
@@ -146,6 +153,7 @@ struct ReconstructResult {
   bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)
   std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
   std::size_t dataless_facets = 0;   ///< of whole components off the data, removed (remove_components_off_points)
+  std::size_t thin_part_vertices = 0;  ///< Poisson vertices added inside thin material and gaps
   std::size_t thin_points = 0;         ///< input points where the solid or a gap is thinner than the seed spacing / 2
   std::size_t flattened_vertices = 0;  ///< moved onto the face planes next to protected edges
   std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect

@@ -30,6 +30,7 @@ py::dict reconstruct_report(const ReconstructResult& r, const ReconstructOptions
   counts["data_seeds"] = r.meshing.data_seeds;
   counts["thin_points"] = r.thin_points;
   counts["anchored_normals"] = r.anchored_normals;
+  counts["thin_part_vertices"] = r.thin_part_vertices;
   counts["flattened_vertices"] = r.flattened_vertices;
   counts["poisson_screening"] = r.poisson_screening;
   counts["snapped_corners"] = r.snapped_corners;

@@ -123,7 +123,7 @@ class PoissonSurface final : public ImplicitSurface {
  public:
   /// The function is solved on the samples scaled by `scale` (see
   /// PoissonOptions::screening) and evaluated at scale * p.
-  PoissonSurface(std::vector<PointWithNormal> samples, double scale, bool start_cell_grid)
+  PoissonSurface(std::vector<PointWithNormal> samples, double scale, bool start_cell_grid, const std::vector<Vec3>& extra_vertices)
       : start_cell_grid_(start_cell_grid),
         scale_(scale),
         samples_(std::move(samples)),
@@ -131,6 +131,16 @@ class PoissonSurface final : public ImplicitSurface {
         function_(scaled_.begin(), scaled_.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
                   CGAL::Second_of_pair_property_map<PointWithNormal>()) {
     scaled_ = {};  // CGAL keeps its own copy in the triangulation
+    // As Steiner vertices, the kind CGAL's own refinement adds: unknowns of
+    // the solve with no normal and no pull towards 0. The function exposes
+    // its triangulation read-only; inserting before the solve is what its
+    // refinement does itself.
+    auto& triangulation = const_cast<Triangulation&>(function_.tr());
+    Cell_handle hint;
+    for (const Vec3& v : extra_vertices) {
+      const Triangulation::Point_with_normal p(detail::to_cgal(scale * v));
+      hint = triangulation.insert(p, Triangulation::STEINER, hint, CGAL::Poisson_visitor())->cell();
+    }
   }
 
   bool solve() {
@@ -270,7 +280,7 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
     // the coordinates up; recentred clouds have diagonals in [2^-20, 2^20].
     if (spacing > 0) scale = std::clamp(kCgalPoissonLambda / (options.screening * spacing), 1e-9, 1e9);
   }
-  auto surface = std::make_unique<PoissonSurface>(samples, scale, options.start_cell_grid);
+  auto surface = std::make_unique<PoissonSurface>(samples, scale, options.start_cell_grid, options.extra_vertices);
   if (!surface->solve()) throw NumericalFailure("Poisson reconstruction: the linear solver failed");
   // Samples on an exact sphere (1,000 points of a Fibonacci sphere fail,
   // 1,500 do not) make CGAL's Delaunay refinement of the Poisson domain
@@ -290,7 +300,8 @@ std::unique_ptr<ImplicitSurface> poisson_surface(const PointSet& points, const P
   double agreement = agreement_of(*surface);
   for (double jitter : {1e-4, 1e-3}) {
     if (agreement >= 0.75) break;
-    auto retry = std::make_unique<PoissonSurface>(jittered(samples, jitter * surface->bounding_radius()), scale, options.start_cell_grid);
+    auto retry = std::make_unique<PoissonSurface>(jittered(samples, jitter * surface->bounding_radius()), scale, options.start_cell_grid,
+                                                  options.extra_vertices);
     if (!retry->solve()) continue;
     const double retry_agreement = agreement_of(*retry);
     if (retry_agreement > agreement) std::tie(surface, agreement) = std::make_pair(std::move(retry), retry_agreement);

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <iostream>
 #include <optional>
@@ -31,6 +32,7 @@
 
 #include "eval/mesh_graph.h"
 #include "pointset/cgal_bridge.h"
+#include "pointset/knn.h"
 #include "sharpmesh/meshing.h"
 
 namespace sharpmesh {
@@ -95,6 +97,34 @@ struct BallSizing {
     if (gap < 0) return protection.ball_radius;
     return std::clamp(protection.gap_margin * gap, protection.ball_radius, max_radius);
   }
+};
+
+/// The facet size criterion (a bound on the surface Delaunay ball radius):
+/// `uniform` everywhere but within twice the thickness of a thin point
+/// (ImplicitMeshingOptions::thin_points), where it is that thickness: an
+/// empty ball centred on one sheet then cannot reach past the other (a
+/// smaller bound only adds facets).
+class ThinPartSizing {
+ public:
+  ThinPartSizing(double uniform, const std::vector<Vec3>& points, const std::vector<double>& thickness)
+      : uniform_(uniform), thickness_(std::make_shared<std::vector<double>>(thickness)) {
+    if (!points.empty()) index_ = std::make_shared<detail::KnnIndex>(points);
+  }
+  double operator()(const detail::Point3& p, int, const Domain::Index&) const {
+    if (!index_) return uniform_;
+    std::vector<std::uint32_t> nearest;
+    std::vector<double> squared;
+    index_->nearest(detail::from_cgal(p), 1, nearest, squared);
+    if (nearest.empty()) return uniform_;
+    const double t = (*thickness_)[nearest[0]];
+    if (squared[0] > 4 * t * t) return uniform_;
+    return std::min(uniform_, t);
+  }
+
+ private:
+  double uniform_;
+  std::shared_ptr<const std::vector<double>> thickness_;
+  std::shared_ptr<const detail::KnnIndex> index_;
 };
 
 /// CGAL's points of the curves_for_protection pieces.
@@ -449,6 +479,9 @@ void ImplicitMeshingOptions::check() const {
     throw InvalidArgument("data seed spacings must be empty or one per seed");
   for (double s : data_seed_spacings)
     if (!(s > 0) || !std::isfinite(s)) throw InvalidArgument("data seed spacings must be positive (got " + format_number(s) + ")");
+  if (thin_thickness.size() != thin_points.size()) throw InvalidArgument("thin points need one thickness each");
+  for (double t : thin_thickness)
+    if (!(t > 0) || !std::isfinite(t)) throw InvalidArgument("thin-part thickness must be positive (got " + format_number(t) + ")");
   if (!features.polylines.empty()) {
     if (!(features.ball_radius > 0) || !std::isfinite(features.ball_radius))
       throw InvalidArgument("protecting-ball radius must be positive (got " + format_number(features.ball_radius) + ")");
@@ -525,8 +558,8 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
   domain.add_features(polylines.begin(), polylines.end());
 
   // The surface Delaunay ball radius bounds edges: radius <= l/2 gives edges <= l.
-  Criteria criteria(params::edge_size = sizing, params::facet_angle = options.criteria.angle,
-                    params::facet_size = options.criteria.edge_length / 2.0,
+  const ThinPartSizing facet_size(options.criteria.edge_length / 2.0, options.thin_points, options.thin_thickness);
+  Criteria criteria(params::edge_size = sizing, params::facet_angle = options.criteria.angle, params::facet_size = facet_size,
                     params::facet_distance = options.criteria.distance);
   // A facet has about half a vertex: a budget of 1.5x the facet limit in
   // vertices stops a run whose estimate was far too low.

@@ -100,23 +100,53 @@ namespace {
 /// point per cell of `spacing`, and, where the solid (or a gap) is thinner
 /// than spacing / 2, every point with a spacing of twice the local
 /// thickness, so both sides get vertices close enough for the restricted
-/// Delaunay triangulation to separate them. Walls thinner than the noise or
-/// than one average spacing are not looked for.
+/// Delaunay triangulation to separate them; there the facets are also
+/// bounded by the thickness (ImplicitMeshingOptions::thin_points), and the
+/// facet count expected grows by the ratio of the areas of uniform and
+/// local facets. Walls thinner than the noise or than one average spacing
+/// are not looked for.
 void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult& result, ImplicitMeshingOptions& meshing) {
   meshing.seed_spacing = spacing;
   if (result.average_spacing < 0.5 * spacing) {
     const std::vector<double> thickness = local_thickness(oriented, result.average_spacing, 0.5 * spacing);
+    const double uniform = meshing.criteria.edge_length / 2;
+    double facet_ratio = 0;
     for (std::size_t i = 0; i < oriented.size(); ++i) {
       if (!std::isfinite(thickness[i])) continue;
       meshing.data_seeds.push_back(oriented.points[i]);
       meshing.data_seed_spacings.push_back(2 * thickness[i]);
+      meshing.thin_points.push_back(oriented.points[i]);
+      meshing.thin_thickness.push_back(thickness[i]);
+      const double local = std::min(uniform, thickness[i]);
+      facet_ratio += (uniform / local) * (uniform / local) - 1;
       ++result.thin_points;
     }
+    meshing.expected_facets *= 1 + facet_ratio / static_cast<double>(oriented.size());
   }
   PointSet grid{oriented.points, {}, {}};
   grid_simplify(grid, spacing);
   meshing.data_seeds.insert(meshing.data_seeds.end(), grid.points.begin(), grid.points.end());
   meshing.data_seed_spacings.resize(meshing.data_seeds.size(), spacing);
+}
+
+/// Vertices half-way across thin material and narrow gaps, for the Poisson
+/// function (PoissonOptions::extra_vertices): at each point whose facing
+/// sheet lies between one and six spacings away, both points half the
+/// thickness along its normal line (one lies between the sheets, the other
+/// in open space beside them, where a vertex costs nothing), one per cell
+/// of a spacing.
+std::vector<Vec3> thin_part_vertices(const PointSet& oriented, double spacing) {
+  const std::vector<double> thickness = local_thickness(oriented, spacing, 6 * spacing);
+  PointSet vertices;
+  for (std::size_t i = 0; i < oriented.size(); ++i) {
+    const double length = norm(oriented.normals[i]);
+    if (!std::isfinite(thickness[i]) || !(length > 0)) continue;
+    const Vec3 half = (0.5 * thickness[i] / length) * oriented.normals[i];
+    vertices.points.push_back(oriented.points[i] - half);
+    vertices.points.push_back(oriented.points[i] + half);
+  }
+  if (!vertices.empty()) grid_simplify(vertices, spacing);
+  return vertices.points;
 }
 
 /// CVCM normals (7.4) where the convolved VCM is anisotropic; elsewhere
@@ -252,19 +282,26 @@ std::size_t repair_normal_signs(PointSet& oriented, std::unique_ptr<ImplicitSurf
   return flipped;
 }
 
-/// Signs from the cloud's occupancy (exterior_votes.cpp) for the tangent MST
-/// to grow from, so that no knife edge (a conical roof's rim) inverts the
-/// face behind it. Cells of one spacing resolve thin roofs; where a random
-/// sampling's gaps let the outside in (a cube at 20k points), cells of 1.5
-/// spacings still wall it off. All zero when neither encloses anything
-/// (open clouds).
-std::vector<signed char> occupancy_anchors(const PointSet& cloud, double average_spacing, double noise) {
-  std::vector<signed char> anchors;
+/// Signs for the tangent MST to grow from (exterior_votes.cpp), so that no
+/// knife edge (a conical roof's rim) inverts the face behind it: the sheet
+/// parity where it decides (thin plates and bars included), else the
+/// occupancy (cells of one spacing resolve thin roofs; where a random
+/// sampling's gaps let the outside in, a cube at 20k points, cells of 1.5
+/// spacings still wall it off); none where the two disagree. Then only the
+/// votes their same-sheet neighbours confirm (vote_consensus.cpp). All zero
+/// on open clouds.
+std::vector<signed char> occupancy_anchors(const PointSet& cloud, double average_spacing, double noise, int k) {
+  std::vector<signed char> occupancy;
   for (double cell : {average_spacing, 1.5 * average_spacing}) {
-    anchors = exterior_side_votes(cloud, cell, 6 * cell + 4 * noise);
-    if (std::any_of(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; })) break;
+    occupancy = exterior_side_votes(cloud, cell, 6 * cell + 4 * noise);
+    if (std::any_of(occupancy.begin(), occupancy.end(), [](signed char v) { return v != 0; })) break;
   }
-  return anchors;
+  std::vector<signed char> votes = sheet_parity_votes(cloud, average_spacing, noise);
+  for (std::size_t i = 0; i < votes.size(); ++i) {
+    if (votes[i] == 0) votes[i] = occupancy[i];
+    else if (occupancy[i] != 0 && occupancy[i] != votes[i]) votes[i] = 0;
+  }
+  return patch_consensus_votes(cloud, votes, k);
 }
 
 /// Normals read from a file are checked before Poisson trusts them: files
@@ -301,7 +338,8 @@ InputNormals check_input_normals(PointSet& cloud, const ReconstructOptions& opti
   pca.k = std::min(pca.k, last);
   estimate_normals(reference, pca, progress);
   const std::vector<signed char> anchors =
-      occupancy_anchors(reference, average_spacing(reference, std::min(options.spacing_k, last), progress), 0.0);
+      occupancy_anchors(reference, average_spacing(reference, std::min(options.spacing_k, last), progress), 0.0,
+                        std::min(options.orientation.k, last));
   orient_normals_tangent_mst(reference, std::min(options.orientation.k, last), anchors, progress);
   std::size_t agree = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) agree += dot(reference.normals[i], cloud.normals[i]) > 0;
@@ -366,8 +404,8 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     // Tangent-aware MST (orientation.cpp): no flips across thin walls.
     // Automatic normals: anchored by the occupancy (occupancy_anchors).
     std::vector<signed char> anchors;
-    if (automatic) {
-      anchors = occupancy_anchors(oriented, result.average_spacing, result.features.noise_estimate);
+    if (automatic && options.anchor_orientation) {
+      anchors = occupancy_anchors(oriented, result.average_spacing, result.features.noise_estimate, options.orientation.k);
       result.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
     }
     orient_normals_tangent_mst(oriented, options.orientation.k, anchors, progress);
@@ -398,6 +436,8 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
                        (result.features.denoise_passes > 0 || !(result.features.noise_estimate < kCleanNoiseRatio * result.average_spacing));
     poisson.screening = result.poisson_screening = noisy ? options.poisson_screening_noisy : options.poisson_screening;
     poisson.average_spacing = result.average_spacing;
+    if (options.thin_part_vertices) poisson.extra_vertices = thin_part_vertices(oriented, result.average_spacing);
+    result.thin_part_vertices = poisson.extra_vertices.size();
     if (!thin && !grid) return poisson_surface(oriented, poisson, progress, &diagnostics);
     PointSet samples{oriented.points, oriented.normals, {}};
     if (grid) grid_simplify(samples, options.poisson_spacing * result.d_prime);

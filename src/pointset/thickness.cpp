@@ -28,14 +28,25 @@ std::vector<double> local_thickness(const PointSet& points, double min_thickness
   // Noisy points of one sheet also face each other across the noise band:
   // walls thinner than 4x the noise (the median RMS residual of planes
   // fitted to 24 neighbours, on up to 2000 points) are not looked for.
+  // Only neighbours within 30 degrees of the point's tangent plane are
+  // fitted: on a part made of plates two spacings thick the 24 neighbours
+  // reach the far face, and the plate itself read as noise hid every wall.
   const std::size_t samples = std::min<std::size_t>(points.size(), 2000);
   std::vector<double> residual(samples, 0.0);
   tbb::parallel_for(std::size_t(0), samples, [&](std::size_t s) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
-    index.nearest(points.points[s * (points.size() / samples)], 24, ids, d2);
+    const std::size_t centre = s * (points.size() / samples);
+    const Vec3& p = points.points[centre];
+    const Vec3& n = points.normals[centre];
+    index.nearest(p, 24, ids, d2);
     std::vector<Eigen::Vector3d> neighbours;
-    for (std::uint32_t i : ids) neighbours.emplace_back(points.points[i][0], points.points[i][1], points.points[i][2]);
+    for (std::uint32_t i : ids) {
+      const Vec3 chord = points.points[i] - p;
+      if (std::abs(dot(chord, n)) > 0.5 * norm(chord) * norm(n)) continue;
+      neighbours.emplace_back(points.points[i][0], points.points[i][1], points.points[i][2]);
+    }
+    if (neighbours.size() < 8) return;
     detail::Plane plane;
     double rms = 0;
     if (detail::fit_plane(neighbours, plane, rms)) residual[s] = rms;

@@ -312,6 +312,79 @@ TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
   std::printf("flipped normals on a thin slab: tangent MST %.4f, CGAL MST %.4f\n", ours_flipped, cgal_flipped);
 }
 
+// Sheet parity decides the sign where the material is too thin to enclose
+// an empty cell (a plate 2.5 spacings thick), and inside a cavity, where
+// what the occupancy calls enclosed is outside the material (a ball in a
+// hollow box): every decided vote is right; an open sheet gets none. The
+// consensus keeps the votes the same-sheet neighbours confirm and drops
+// stray wrong ones.
+TEST(Normals, SheetParityVotesDecideThinPlatesAndCavities) {
+  SurfaceMesh plate = test::cube_mesh(0.5);
+  for (Vec3& v : plate.vertices) v[2] *= 0.02;
+  const PointSet plate_truth = test::sample_with_normals(plate, 20000, 5);
+  const double spacing = average_spacing(plate_truth, 6);
+  ASSERT_LT(0.02, 3 * spacing);  // thinner than three spacings
+  PointSet flipped = plate_truth;
+  for (std::size_t i = 0; i < flipped.size(); i += 2) flipped.normals[i] = -1.0 * flipped.normals[i];
+  for (double cell : {spacing, 1.5 * spacing})
+    for (signed char v : exterior_side_votes(flipped, cell, 6 * cell)) EXPECT_EQ(v, 0);  // nothing enclosed
+  const std::vector<signed char> votes = sheet_parity_votes(flipped, spacing, 0.0);
+  std::size_t decided = 0, wrong = 0;
+  for (std::size_t i = 0; i < votes.size(); ++i) {
+    if (votes[i] == 0) continue;
+    ++decided;
+    wrong += votes[i] != (i % 2 == 0 ? -1 : 1);
+  }
+  EXPECT_GT(decided, plate_truth.size() * 8 / 10);
+  EXPECT_LE(wrong, decided / 1000);
+
+  // A hollow box (walls 0.1 thick) with a ball in its cavity; the inner
+  // shell's facets face into the cavity.
+  SurfaceMesh hollow = test::cube_mesh(0.5);
+  SurfaceMesh cavity = test::cube_mesh(0.4);
+  for (auto& f : cavity.faces) std::swap(f[1], f[2]);
+  SurfaceMesh ball = test::sphere_mesh(4, 0.2);
+  for (const SurfaceMesh* part : {&cavity, &ball}) {
+    const auto base = static_cast<std::uint32_t>(hollow.vertices.size());
+    hollow.vertices.insert(hollow.vertices.end(), part->vertices.begin(), part->vertices.end());
+    for (auto f : part->faces) hollow.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  }
+  const PointSet nested = test::sample_with_normals(hollow, 40000, 6);
+  PointSet nested_flipped = nested;
+  for (std::size_t i = 0; i < nested.size(); i += 3) nested_flipped.normals[i] = -1.0 * nested_flipped.normals[i];
+  const std::vector<signed char> nested_votes = sheet_parity_votes(nested_flipped, average_spacing(nested, 6), 0.0);
+  std::size_t cavity_decided = 0, nested_wrong = 0;
+  for (std::size_t i = 0; i < nested.size(); ++i) {
+    if (nested_votes[i] == 0) continue;
+    const double r = std::max({std::abs(nested.points[i][0]), std::abs(nested.points[i][1]), std::abs(nested.points[i][2])});
+    cavity_decided += r > 0.35 && r < 0.45;
+    nested_wrong += nested_votes[i] != (i % 3 == 0 ? -1 : 1);
+  }
+  std::size_t nested_decided = 0;
+  for (signed char v : nested_votes) nested_decided += v != 0;
+  std::printf("sheet parity on a ball in a hollow box: %zu decided (%zu on the cavity's walls), %zu wrong\n", nested_decided,
+              cavity_decided, nested_wrong);
+  EXPECT_GT(cavity_decided, 1000u);
+  EXPECT_LE(nested_wrong, nested_decided / 1000);
+
+  // Stray wrong votes among right ones: the consensus drops them.
+  std::vector<signed char> noisy(plate_truth.size(), 1);
+  for (std::size_t i = 0; i < noisy.size(); i += 50) noisy[i] = -1;
+  const std::vector<signed char> agreed = patch_consensus_votes(plate_truth, noisy);
+  std::size_t kept = 0;
+  for (signed char v : agreed) {
+    EXPECT_NE(v, -1);
+    kept += v == 1;
+  }
+  EXPECT_GT(kept, plate_truth.size() * 8 / 10);
+
+  PointSet sheet;
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 100; ++j) sheet.points.push_back({i / 100.0, j / 100.0, 0.0}), sheet.normals.push_back({0, 0, 1});
+  for (signed char v : sheet_parity_votes(sheet, 0.01, 0.0)) EXPECT_EQ(v, 0);
+  EXPECT_THROW(sheet_parity_votes(sheet, 0, 0), InvalidArgument);
+}
+
 // The occupancy decides signs on a closed solid and nowhere on an open sheet;
 // an MST grown from those anchors orients every normal outwards (no global
 // flip left to undo).
