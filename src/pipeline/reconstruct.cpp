@@ -420,6 +420,9 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     if (from_cvcm && automatic) result.sharpened_normals = sharpen_normals(oriented, isotropic, result.features);
     return oriented;
   };
+  // Found once: later solves flip normal signs only (the sign repair, the
+  // data-fit retries), which leaves the half-way points where they are.
+  std::optional<std::vector<Vec3>> thin_vertices;
   auto solve = [&](const PointSet& oriented, PoissonDiagnostics& diagnostics, const char* stage) {
     std::optional<StageTimer> timer;
     if (stage) timer.emplace(result.stages, stage);
@@ -436,7 +439,8 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
                        (result.features.denoise_passes > 0 || !(result.features.noise_estimate < kCleanNoiseRatio * result.average_spacing));
     poisson.screening = result.poisson_screening = noisy ? options.poisson_screening_noisy : options.poisson_screening;
     poisson.average_spacing = result.average_spacing;
-    if (options.thin_part_vertices) poisson.extra_vertices = thin_part_vertices(oriented, result.average_spacing);
+    if (options.thin_part_vertices && !thin_vertices) thin_vertices = thin_part_vertices(oriented, result.average_spacing);
+    if (thin_vertices) poisson.extra_vertices = *thin_vertices;
     result.thin_part_vertices = poisson.extra_vertices.size();
     if (!thin && !grid) return poisson_surface(oriented, poisson, progress, &diagnostics);
     PointSet samples{oriented.points, oriented.normals, {}};
