@@ -161,13 +161,13 @@ std::vector<signed char> exterior_side_votes(const PointSet& cloud, double cell,
 /// separates two sheets).
 std::vector<signed char> sheet_parity_votes(const PointSet& cloud, double spacing, double noise);
 
-/// Sign votes (+1 keep, -1 flip, 0 undecided; one per point) made
-/// consistent patch by patch (beyond the thesis, issue 36): the plain
-/// tangent MST's normals are grouped into smooth patches along tangent
-/// chords, and every point of a patch takes the sign two thirds of the
-/// patch's votes (at least three) give; other points get 0. A stray wrong
-/// vote no longer seeds a tree of its own. `k`: the MST's neighbours.
-std::vector<signed char> patch_consensus_votes(const PointSet& cloud, const std::vector<signed char>& votes, int k = 18);
+/// Sign votes (+1 keep, -1 flip, 0 undecided; one per point) kept only
+/// where the same sheet confirms them (beyond the thesis, issue 36): among
+/// the k nearest neighbours whose normal lines lie within 25 degrees and
+/// along tangent chords, at least three vote and two thirds agree (signs
+/// carried by the normals' dot product); other votes become 0. A stray
+/// wrong vote no longer seeds an MST tree of its own.
+std::vector<signed char> neighbour_confirmed_votes(const PointSet& cloud, const std::vector<signed char>& votes, int k = 18);
 
 /// Beyond the thesis: after an MST orientation, flips the patches of
 /// normals that the creases around them show inverted (an MST inverts a

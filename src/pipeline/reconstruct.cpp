@@ -301,7 +301,7 @@ std::vector<signed char> occupancy_anchors(const PointSet& cloud, double average
     if (votes[i] == 0) votes[i] = occupancy[i];
     else if (occupancy[i] != 0 && occupancy[i] != votes[i]) votes[i] = 0;
   }
-  return patch_consensus_votes(cloud, votes, k);
+  return neighbour_confirmed_votes(cloud, votes, k);
 }
 
 /// Normals read from a file are checked before Poisson trusts them: files

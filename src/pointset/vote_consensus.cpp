@@ -1,22 +1,22 @@
-// Beyond the thesis (issue 36): sign votes made consistent patch by patch
-// before the MST grows from them.
+// Beyond the thesis (issue 36): sign votes kept only where the same sheet
+// confirms them, before the MST grows from them.
 //
 // The occupancy and sheet-parity votes (exterior_votes.cpp) are right for
-// more than 99% of the points they decide, but a wrong one, where no other
-// vote is near (a slot's wall), seeds a tree of its own and turns a whole
-// face inside out. The plain tangent MST is locally right: its mistakes
-// are whole regions, flipped across knife edges and acute creases. So the
-// MST's normals are grouped into patches (within 25 degrees, along edges
-// within 30 degrees of both tangent planes, so that the two faces of a thin
-// plate stay apart), and each patch takes the sign most of its votes give
-// (two thirds of at least three); a patch without such a majority gets no
-// vote at all, and the anchored MST decides it from its neighbours.
-#include <boost/pending/disjoint_sets.hpp>
+// nearly all the points they decide, but a wrong one where no other vote is
+// near (a slot's wall) seeds a tree of its own and turns a whole face
+// inside out. A vote stays when, among its k nearest neighbours on the same
+// sheet (normal lines within 25 degrees, along chords within 30 degrees of
+// both tangent planes, so the far face of a thin plate does not count), at
+// least three have votes and two thirds of those give the same sign once
+// carried across by the sign of the normals' dot product. A wider consensus
+// (every smooth patch of the plain MST taking its majority) decided nothing
+// on thin plates whose two faces one patch joined, and gave a whole face of
+// a ribbed part the wrong sign.
 #include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+#include <algorithm>
 #include <vector>
 
 #include "pointset/knn.h"
@@ -26,13 +26,13 @@
 namespace sharpmesh {
 namespace {
 
-constexpr double kSamePatchCos = 0.9;    // neighbours within 25 degrees share a patch
+constexpr double kSameSheetCos = 0.9;     // normal lines within 25 degrees
 constexpr double kMaxTangentSine = 0.5;  // ... along chords within 30 degrees of both tangent planes
 constexpr int kMinVotes = 3;
 
 }  // namespace
 
-std::vector<signed char> patch_consensus_votes(const PointSet& cloud, const std::vector<signed char>& votes, int k) {
+std::vector<signed char> neighbour_confirmed_votes(const PointSet& cloud, const std::vector<signed char>& votes, int k) {
   if (cloud.normals.size() != cloud.size() || votes.size() != cloud.size())
     throw InvalidArgument("vote consensus: needs one normal and one vote per point");
   const std::size_t n = cloud.size();
@@ -51,7 +51,7 @@ std::vector<signed char> patch_consensus_votes(const PointSet& cloud, const std:
     for (std::uint32_t j : near) {
       if (j == i || votes[j] == 0) continue;
       const double alignment = dot(normal[i], normal[j]);
-      if (std::abs(alignment) < kSamePatchCos) continue;
+      if (std::abs(alignment) < kSameSheetCos) continue;
       const Vec3 chord = p[j] - p[i];
       const double length = norm(chord);
       if (!(length > 0)) continue;

@@ -370,7 +370,7 @@ TEST(Normals, SheetParityVotesDecideThinPlatesAndCavities) {
   // Stray wrong votes among right ones: the consensus drops them.
   std::vector<signed char> noisy(plate_truth.size(), 1);
   for (std::size_t i = 0; i < noisy.size(); i += 50) noisy[i] = -1;
-  const std::vector<signed char> agreed = patch_consensus_votes(plate_truth, noisy);
+  const std::vector<signed char> agreed = neighbour_confirmed_votes(plate_truth, noisy);
   std::size_t kept = 0;
   for (signed char v : agreed) {
     EXPECT_NE(v, -1);
