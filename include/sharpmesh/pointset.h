@@ -61,8 +61,10 @@ std::size_t remove_duplicate_points(PointSet& points);
 /// parallel, either orientation, and lying within 30 degrees of the
 /// normal's line), looked for between min_thickness (raised to 4x the
 /// noise level measured on the points) and max_thickness; infinity where
-/// there is none. Needs one (unoriented) normal per point.
-std::vector<double> local_thickness(const PointSet& points, double min_thickness, double max_thickness);
+/// there is none. Needs one (unoriented) normal per point. With `facing`,
+/// also the index of that point (the point's own index where there is none).
+std::vector<double> local_thickness(const PointSet& points, double min_thickness, double max_thickness,
+                                    std::vector<std::uint32_t>* facing = nullptr);
 
 /// Keeps one point per cell of a regular grid of the given cell size (App. A.5).
 std::size_t grid_simplify(PointSet& points, double cell_size);

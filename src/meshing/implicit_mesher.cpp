@@ -32,6 +32,7 @@
 
 #include "eval/mesh_graph.h"
 #include "pointset/cgal_bridge.h"
+#include "meshing/refinement_retries.h"
 #include "pointset/knn.h"
 #include "sharpmesh/meshing.h"
 
@@ -662,169 +663,27 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
 
 }  // namespace
 
-namespace {
-
-double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  return std::sqrt(CGAL::squared_distance(detail::to_cgal(p), Kernel::Segment_3(detail::to_cgal(a), detail::to_cgal(b))));
-}
-
-/// The point of CGAL's "(x y z w) is already inserted on surface." error.
-bool failure_point(const std::string& message, Vec3& p) {
-  const std::size_t open = message.find('(');
-  if (open == std::string::npos) return false;
-  double w = 0;
-  return std::sscanf(message.c_str() + open, "(%lf %lf %lf %lf)", &p[0], &p[1], &p[2], &w) == 4;
-}
-
-/// The whole of a polyline as an unprotected stretch.
-UncoveredGap refused(const Polyline& line) {
-  UncoveredGap gap;
-  Vec3 sum{0, 0, 0};
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    sum = sum + line[i];
-    if (i > 0) gap.length += distance(line[i - 1], line[i]);
-  }
-  gap.center = (1.0 / static_cast<double>(std::max<std::size_t>(line.size(), 1))) * sum;
-  gap.gap = -1;
-  gap.refused_by_mesher = true;
-  return gap;
-}
-
-/// Removes every polyline that passes within `reach` of p, and reports
-/// each. (Cutting out only the stretch near p left two new ends there, and
-/// dropping only the nearest polyline left its neighbours: on couplingdown
-/// 50k the next refinement then ran away at the same spot.) False when no
-/// polyline comes that close.
-bool drop_protection_near(std::vector<Polyline>& polylines, const Vec3& p, double reach, std::vector<UncoveredGap>& dropped) {
-  std::vector<Polyline> kept;
-  for (Polyline& line : polylines) {
-    bool near = false;
-    for (std::size_t i = 0; i + 1 < line.size() && !near; ++i) near = distance_to_segment(p, line[i], line[i + 1]) <= reach;
-    if (near) dropped.push_back(refused(line));
-    else kept.push_back(std::move(line));
-  }
-  const bool any = kept.size() < polylines.size();
-  polylines = std::move(kept);
-  return any;
-}
-
-/// Where a runaway refinement was working: the centre of the densest cell
-/// (of the edge length bound) of mesh edges shorter than 1% of that bound.
-bool runaway_spot(const SurfaceMesh& mesh, double edge_length, Vec3& spot) {
-  std::map<std::array<long, 3>, std::pair<Vec3, std::size_t>> cells;
-  for (const Triangle& t : mesh.faces)
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& a = mesh.vertices[t[k]];
-      const Vec3& b = mesh.vertices[t[(k + 1) % 3]];
-      if (distance(a, b) >= 0.01 * edge_length) continue;
-      const std::array<long, 3> key{static_cast<long>(std::floor(a[0] / edge_length)), static_cast<long>(std::floor(a[1] / edge_length)),
-                                    static_cast<long>(std::floor(a[2] / edge_length))};
-      auto& cell = cells[key];
-      cell.first = cell.first + a;
-      ++cell.second;
-    }
-  std::size_t best = 0;
-  for (const auto& [key, cell] : cells)
-    if (cell.second > best) best = cell.second, spot = (1.0 / static_cast<double>(cell.second)) * cell.first;
-  return best > 0;
-}
-
-/// Positions shared by two or more output vertices: non-manifold vertices
-/// of the complex, which facets_in_complex_3_to_triangle_mesh splits (the
-/// facets around them touch, and count as self-intersecting).
-std::vector<Vec3> pinched_vertices(const SurfaceMesh& mesh) {
-  std::map<std::array<double, 3>, int> count;
-  for (const Vec3& v : mesh.vertices) ++count[{v[0], v[1], v[2]}];
-  std::vector<Vec3> out;
-  for (const auto& [p, n] : count)
-    if (n > 1) out.push_back({p[0], p[1], p[2]});
-  return out;
-}
-
-}  // namespace
-
 ImplicitMeshingResult mesh_implicit_surface(const ImplicitSurface& surface, const ImplicitMeshingOptions& options,
                                             const Progress& progress) {
   options.check();
-  // CGAL's Mesh_3 (5.5 and still in 2025, issue #9102) can fail next to
-  // protected curves that come close to each other or to another sheet of
-  // the surface (couplingdown's chamfers, rotor's thin wall): with a
-  // refinement point "already inserted on surface", or by a manifold repair
-  // that runs away. The polylines near the spot are dropped, reported, and
-  // the refinement is run again; when no spot is known, without protection.
-  constexpr int kMaxRetries = 4;
-  ImplicitMeshingOptions attempt = options;
-  std::vector<UncoveredGap> dropped;
-  std::size_t runaway_stopped_at = 0;
-  drop_close_polylines(attempt.features.polylines, options.features.min_separation, dropped);
-  const double reach = 2 * (options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius);
-  auto drop_all = [&] {
-    for (const Polyline& line : attempt.features.polylines) dropped.push_back(refused(line));
-    attempt.features.polylines.clear();
-  };
-  std::vector<Vec3> stalled;
-  bool rescue_stalled = true;
-  bool protection_stopped = false;
-  for (int retries = 0;; ++retries) {
-    std::string what;
-    const bool last = retries == kMaxRetries || attempt.features.polylines.empty();
+  // CGAL's Mesh_3 (5.5, CGAL issue #9102) can fail next to protected
+  // curves that come close to each other or to another sheet of the
+  // surface: with a refinement point "already inserted on surface", or by
+  // a manifold repair that runs away. refinement_retries.cpp decides what
+  // goes before the next refinement; here each one runs.
+  auto refine = [&](const ImplicitMeshingOptions& attempt, bool rescue_stalled, std::vector<Vec3>& stalled) {
+    detail::RefinementRun run;
     try {
-      std::optional<Vec3> pile;
-      ImplicitMeshingResult result = refine_implicit_surface(surface, attempt, progress, pile, rescue_stalled, stalled);
-      Vec3 spot;
-      if (pile) spot = *pile;
-      if (result.refinement_runaway && !last && (pile || runaway_spot(result.mesh, options.criteria.edge_length, spot))) {
-        runaway_stopped_at = result.runaway_stopped_at;
-        if (!drop_protection_near(attempt.features.polylines, spot, reach, dropped)) drop_all();
-        report_progress(progress, "refinement (again, without the features it ran away next to)", 0.0);
-        continue;
-      }
-      // A stalled manifold repair leaves non-manifold vertices (couplingdown
-      // 50k with r_junc capped: 261 facets around pinched vertices at
-      // delta 3.5): the protection near them goes, and the refinement runs again.
-      if (result.refinement_stalled && !last) {
-        bool any = false;
-        for (const Vec3& pinch : pinched_vertices(result.mesh)) any |= drop_protection_near(attempt.features.polylines, pinch, reach, dropped);
-        if (any) {
-          report_progress(progress, "refinement (again, without the features it stalled next to)", 0.0);
-          continue;
-        }
-      }
-      result.mesher_retries = static_cast<std::size_t>(retries);
-      result.protection_stopped = protection_stopped;
-      if (!result.refinement_runaway) result.runaway_stopped_at = runaway_stopped_at;
-      result.uncovered.insert(result.uncovered.end(), dropped.begin(), dropped.end());
-      return result;
+      run.result = refine_implicit_surface(surface, attempt, progress, run.runaway_pile, rescue_stalled, stalled);
     } catch (const CGAL::Failure_exception& e) {
-      what = !e.message().empty() ? e.message() : e.expression();
+      run.status = detail::RefinementRun::Status::CgalFailure;
+      run.cgal_message = !e.message().empty() ? e.message() : e.expression();
     } catch (const ProtectionStopped&) {
-      protection_stopped = true;
-      drop_all();
-      report_progress(progress, "refinement (again, without protection: it ran past its query budget)", 0.0);
-      continue;
+      run.status = detail::RefinementRun::Status::ProtectionStopped;
     }
-    if (last) {
-      const std::string line = what.substr(0, what.find('\n'));
-      throw NumericalFailure("Delaunay refinement failed inside CGAL Mesh_3 (" + line + "); try another delta");
-    }
-    Vec3 where;
-    if (failure_point(what, where) && drop_protection_near(attempt.features.polylines, where, reach, dropped)) {
-      report_progress(progress, "refinement (again, without the features CGAL failed next to)", 0.0);
-      continue;
-    }
-    // No spot named ("A facet is not in conflict with its refinement
-    // point!"): the first suspects are the points where the function is too
-    // flat for Newton (couplingdown 50k at delta 3.5: 5 polyline points;
-    // protected, CGAL failed, and dropping every polyline made the mesh
-    // PIF's, mean 0.09 -> 0.15 U). They go back to being unprotected.
-    if (rescue_stalled && !stalled.empty()) {
-      rescue_stalled = false;
-      report_progress(progress, "refinement (again, without the features where the function is flat)", 0.0);
-      continue;
-    }
-    drop_all();
-    report_progress(progress, "refinement (again, without protection)", 0.0);
-  }
+    return run;
+  };
+  return detail::refine_with_retries(options, refine, progress);
 }
 
 }  // namespace sharpmesh

@@ -17,12 +17,17 @@
 
 namespace sharpmesh {
 
-std::vector<double> local_thickness(const PointSet& points, double min_thickness, double max_thickness) {
+std::vector<double> local_thickness(const PointSet& points, double min_thickness, double max_thickness,
+                                    std::vector<std::uint32_t>* facing_points) {
   if (points.normals.size() != points.size()) throw InvalidArgument("local thickness needs one normal per point");
   if (!(min_thickness >= 0) || !(max_thickness > min_thickness) || !std::isfinite(max_thickness))
     throw InvalidArgument("local thickness: bad thickness range");
   const double none = std::numeric_limits<double>::infinity();
   std::vector<double> thickness(points.size(), none);
+  if (facing_points) {
+    facing_points->resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) (*facing_points)[i] = static_cast<std::uint32_t>(i);
+  }
   if (points.empty()) return thickness;
   const detail::KnnIndex index(points.points);
   // Noisy points of one sheet also face each other across the noise band:
@@ -108,6 +113,7 @@ std::vector<double> local_thickness(const PointSet& points, double min_thickness
         if (d2.empty() || d2[0] < 0.09 * best * best) best = none;
       }
       thickness[i] = best;
+      if (facing_points && std::isfinite(best)) (*facing_points)[i] = facing;
     }
   });
   return thickness;

@@ -111,6 +111,16 @@ TEST(Simplify, GridKeepsOnePointPerCell) {
   grid_simplify(copy, 0.2001);
   EXPECT_EQ(copy.size(), 20u * 20u);
   EXPECT_THROW(grid_simplify(copy, 0.0), InvalidArgument);
+  // Points at one location (a single point, or the two equal midpoints of
+  // a pair of points facing each other) are one cell, not an error.
+  for (std::size_t n : {1u, 2u, 5u}) {
+    PointSet same{std::vector<Vec3>(n, Vec3{1, 2, 3}), std::vector<Vec3>(n, Vec3{0, 0, 1}), {}};
+    EXPECT_EQ(grid_simplify(same, 0.1), n - 1);
+    ASSERT_EQ(same.size(), 1u);
+    EXPECT_EQ(same.normals.size(), 1u);
+  }
+  PointSet bad{{{0, 0, 0}, {std::nan(""), 0, 0}}, {}, {}};
+  EXPECT_THROW(grid_simplify(bad, 0.1), InvalidInput);
 }
 
 TEST(Simplify, ThinningKeepsPointsApartAndTheFirstOfEachPair) {
@@ -622,11 +632,19 @@ TEST(LocalThickness, FindsTheOppositeSheetOnly) {
         two.points.push_back({i * 0.02, j * 0.02, z});
         two.normals.push_back({0, 0, z > 0 ? 1.0 : -1.0});
       }
-  const std::vector<double> t = local_thickness(two, 0.01, 0.3);
-  for (double x : t) EXPECT_NEAR(x, 0.1, 1e-9);
+  std::vector<std::uint32_t> facing;
+  const std::vector<double> t = local_thickness(two, 0.01, 0.3, &facing);
+  ASSERT_EQ(facing.size(), two.size());
+  for (std::size_t i = 0; i < two.size(); ++i) {
+    EXPECT_NEAR(t[i], 0.1, 1e-9);
+    // The facing point lies on the other sheet, straight across.
+    EXPECT_NEAR(two.points[facing[i]][2], 0.1 - two.points[i][2], 1e-12);
+    EXPECT_NEAR(norm(two.points[facing[i]] - two.points[i]), t[i], 1e-12);
+  }
   PointSet one;
   for (std::size_t i = 0; i < two.size(); i += 2) one.points.push_back(two.points[i]), one.normals.push_back(two.normals[i]);
-  for (double x : local_thickness(one, 0.01, 0.3)) EXPECT_TRUE(std::isinf(x));
+  for (double x : local_thickness(one, 0.01, 0.3, &facing)) EXPECT_TRUE(std::isinf(x));
+  for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(facing[i], i) << "no facing point: the point itself";
   EXPECT_THROW(local_thickness(PointSet{two.points, {}, {}}, 0.01, 0.3), InvalidArgument);
   EXPECT_THROW(local_thickness(two, 0.3, 0.1), InvalidArgument);
 }
