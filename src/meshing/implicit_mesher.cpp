@@ -503,8 +503,79 @@ double estimate_facet_count(double area, const RefinementCriteria& criteria) {
 
 namespace {
 
-/// Thrown when the feature protection ran past its time limit.
+/// Thrown when the feature protection ran past its query budget.
 struct ProtectionStopped {};
+
+/// Whether random points of the meshing ball find both signs of the
+/// function (at least three of each among up to 4,000).
+bool both_signs_in_ball(const ImplicitSurface& surface, double domain_radius, std::uint64_t seed) {
+  std::mt19937_64 generator(seed);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  int negative = 0, positive = 0;
+  for (int i = 0; i < 4000 && (negative < 3 || positive < 3); ++i) {
+    const Vec3 d{coordinate(generator), coordinate(generator), coordinate(generator)};
+    if (norm(d) > 1) continue;
+    (surface.value(surface.bounding_center() + domain_radius * d) < 0 ? negative : positive) += 1;
+  }
+  return negative >= 3 && positive >= 3;
+}
+
+/// Protecting balls on the domain's feature curves (7.3.2), by Mesh_3's
+/// edge protection with the ball sizing; counts go into `result`. Throws
+/// ProtectionStopped when the sizing queries pass the budget.
+void protect_features(C3t3& c3t3, Domain& domain, const BallSizing& sizing, const ImplicitMeshingOptions& options,
+                      std::size_t max_vertices, CGAL::Mesh_error_code& error, const Progress& progress,
+                      ImplicitMeshingResult& result) {
+  report_progress(progress, "protecting balls", 0.0);
+  // Balls that must shrink below this are kept (CGAL's "special balls")
+  // instead of shrinking forever where two extracted polylines cross.
+  const double minimal_radius = 0.05 * options.features.ball_radius;
+  std::atomic<bool> stop{false};
+  BallSizing::QueryBudget budget;
+  budget.stop = &stop;
+  budget.limit = options.protection_query_limit;
+  budget.progress = &progress;
+  BallSizing budgeted_sizing = sizing;
+  budgeted_sizing.budget = &budget;
+  CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, budgeted_sizing, minimal_radius,
+                                                                              max_vertices, &error, &stop);
+  {
+    // CGAL writes "features protection has reached maximal number of
+    // loops. It might result in a crash." to std::cerr when its 29 rounds
+    // of ball shrinking end with balls of two polylines still intersecting
+    // (polylines a spacing apart). Nothing crashes here (a failing
+    // refinement is retried without the close features): the fact goes
+    // to the report instead; any other CGAL message passes through.
+    std::ostringstream cgal_messages;
+    std::streambuf* const cerr_buffer = std::cerr.rdbuf(cgal_messages.rdbuf());
+    try {
+      protect(true);
+    } catch (...) {
+      std::cerr.rdbuf(cerr_buffer);
+      throw;
+    }
+    std::cerr.rdbuf(cerr_buffer);
+    std::string messages = cgal_messages.str();
+    const std::string::size_type warning = messages.find("Warning : features protection has reached maximal");
+    if (warning != std::string::npos) {
+      result.protection_rounds_exhausted = true;
+      const std::string::size_type end = messages.find("crash.", warning);
+      messages.erase(warning, end == std::string::npos ? std::string::npos : end + 7 - warning);
+    }
+    if (messages.find_first_not_of(" \n") != std::string::npos) std::cerr << messages;
+  }
+  result.protection_queries = budget.count.load();
+  if (stop.load()) throw ProtectionStopped{};
+  for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v) {
+    if (c3t3.in_dimension(v) > 1) continue;
+    ++result.protecting_balls;
+    const double r = std::sqrt(c3t3.triangulation().point(v).weight());
+    if (r > 1.01 * options.features.ball_radius) ++result.enlarged_balls;
+    const double gap = sizing.gap_at(detail::from_cgal(c3t3.triangulation().point(v).point()));
+    result.max_gap = std::max(result.max_gap, gap);
+  }
+  report_progress(progress, "protecting balls", 1.0);
+}
 
 /// One refinement; `runaway_spot` is where a run-away refinement piled its
 /// vertices, when the check on them stopped it; `stalled` the polyline
@@ -529,18 +600,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
   // open data (blade 50k) is negative in too small a volume for that test;
   // its data seeds then start the refinement, and only when there are none
   // either is the function refused (after the seeds, below).
-  bool both_signs = false;
-  {
-    std::mt19937_64 generator(options.seed);
-    std::uniform_real_distribution<double> coordinate(-1, 1);
-    int negative = 0, positive = 0;
-    for (int i = 0; i < 4000 && (negative < 3 || positive < 3); ++i) {
-      const Vec3 d{coordinate(generator), coordinate(generator), coordinate(generator)};
-      if (norm(d) > 1) continue;
-      (surface.value(surface.bounding_center() + domain_radius * d) < 0 ? negative : positive) += 1;
-    }
-    both_signs = negative >= 3 && positive >= 3;
-  }
+  const bool both_signs = both_signs_in_ball(surface, domain_radius, options.seed);
   std::function<double(const detail::Point3&)> function = [&surface](const detail::Point3& p) {
     return surface.value(detail::from_cgal(p));
   };
@@ -570,57 +630,7 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
   if (budget_from_data) max_vertices = expected_budget;
   CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
   C3t3 c3t3;
-  if (!polylines.empty()) {
-    report_progress(progress, "protecting balls", 0.0);
-    // Balls that must shrink below this are kept (CGAL's "special balls")
-    // instead of shrinking forever where two extracted polylines cross.
-    const double minimal_radius = 0.05 * options.features.ball_radius;
-    std::atomic<bool> stop{false};
-    BallSizing::QueryBudget budget;
-    budget.stop = &stop;
-    budget.limit = options.protection_query_limit;
-    budget.progress = &progress;
-    BallSizing budgeted_sizing = sizing;
-    budgeted_sizing.budget = &budget;
-    CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, BallSizing> protect(c3t3, domain, budgeted_sizing, minimal_radius,
-                                                                                max_vertices, &error, &stop);
-    {
-      // CGAL writes "features protection has reached maximal number of
-      // loops. It might result in a crash." to std::cerr when its 29 rounds
-      // of ball shrinking end with balls of two polylines still intersecting
-      // (polylines a spacing apart). Nothing crashes here (a failing
-      // refinement is retried without the close features): the fact goes
-      // to the report instead; any other CGAL message passes through.
-      std::ostringstream cgal_messages;
-      std::streambuf* const cerr_buffer = std::cerr.rdbuf(cgal_messages.rdbuf());
-      try {
-        protect(true);
-      } catch (...) {
-        std::cerr.rdbuf(cerr_buffer);
-        throw;
-      }
-      std::cerr.rdbuf(cerr_buffer);
-      std::string messages = cgal_messages.str();
-      const std::string::size_type warning = messages.find("Warning : features protection has reached maximal");
-      if (warning != std::string::npos) {
-        result.protection_rounds_exhausted = true;
-        const std::string::size_type end = messages.find("crash.", warning);
-        messages.erase(warning, end == std::string::npos ? std::string::npos : end + 7 - warning);
-      }
-      if (messages.find_first_not_of(" \n") != std::string::npos) std::cerr << messages;
-    }
-    result.protection_queries = budget.count.load();
-    if (stop.load()) throw ProtectionStopped{};
-    for (auto v = c3t3.triangulation().finite_vertices_begin(); v != c3t3.triangulation().finite_vertices_end(); ++v) {
-      if (c3t3.in_dimension(v) > 1) continue;
-      ++result.protecting_balls;
-      const double r = std::sqrt(c3t3.triangulation().point(v).weight());
-      if (r > 1.01 * options.features.ball_radius) ++result.enlarged_balls;
-      const double gap = sizing.gap_at(detail::from_cgal(c3t3.triangulation().point(v).point()));
-      result.max_gap = std::max(result.max_gap, gap);
-    }
-    report_progress(progress, "protecting balls", 1.0);
-  }
+  if (!polylines.empty()) protect_features(c3t3, domain, sizing, options, max_vertices, error, progress, result);
   if (both_signs) insert_surface_seeds(c3t3, domain);
   if (!options.data_seeds.empty()) {
     const double spacing = options.seed_spacing > 0 ? options.seed_spacing : options.criteria.edge_length;
