@@ -170,6 +170,100 @@ FeatureResult extract_features(const PointSet& input, const FeatureOptions& opti
 
 namespace {
 
+/// The sharpening's tolerances (sharpen.cpp) from the cloud's spacing,
+/// noise and convolution radius.
+detail::SharpeningOptions sharpening_options(const FeatureResult& result, const FeatureOptions& options) {
+  detail::SharpeningOptions sharpening;
+  sharpening.radius = 3 * result.convolution_radius;
+  sharpening.min_angle_deg = options.min_dihedral_angle;
+  // Two planes fit a sharp edge up to the noise and the curvature sagitta.
+  sharpening.max_residual = std::max(0.05 * sharpening.radius, 1.5 * result.noise_estimate);
+  // The nearest sample to a point of a real edge lies within 0.6 average
+  // spacings half of the time, within 1.1 nine times in ten; the virtual
+  // corner of a chamfer w wide lies w/2 off the data. A fit closer than
+  // 0.6 is taken; farther, the plane fallback is tried first; beyond 1.1,
+  // neither is taken.
+  const double avg = result.average_spacing, noise = result.noise_estimate;
+  sharpening.close_to_data = 0.6 * avg + 2 * noise;
+  sharpening.max_data_offset = 1.1 * avg + 2 * noise;
+  // RANSAC planes within 5 spacings (a narrow face there has a few dozen
+  // points), inliers within 0.15 spacings (the sagitta of a cylinder of
+  // radius 80 spacings) or the noise, each face reaching the edge within
+  // 1.5 spacings. The fallback fits positions, not normals, so a curved
+  // face splits into planes a few degrees apart: it asks for 30 degrees
+  // (fandisk's 22-degree creases on curved faces otherwise come out).
+  sharpening.plane_tolerance = 0.15 * avg + 2 * noise;
+  sharpening.plane_radius = 5 * avg;
+  sharpening.face_reach = 1.5 * avg + 2 * noise;
+  sharpening.plane_min_angle_deg = 30;
+  // A corner point is taken only by a RANSAC pair at least 45 degrees apart
+  // (30 let the adjacent plane strips of holes 8 spacings wide through:
+  // anchor 50k lost its hole rims) within r of it (a point farther from
+  // every edge than the band of edge points is no edge's).
+  sharpening.corner_min_angle_deg = 45;
+  sharpening.corner_shift = result.convolution_radius;
+  return sharpening;
+}
+
+/// Polylines traced through each cluster (7.2.3), those off the data
+/// dropped, and the rest joined at junctions into `result.graph`.
+void trace_feature_graph(const std::vector<detail::EdgeCluster>& clusters, const std::vector<Vec3>& edge_points,
+                         const std::vector<Vec3>& edge_directions, const detail::KnnIndex& input_index,
+                         const FeatureOptions& options, const Progress& progress, FeatureResult& result) {
+  StageTimer timer(result.stages, "polylines");
+  report_progress(progress, "polylines", 0.0);
+  const double step = 4 * result.average_spacing;  // r_p floor: the thinned band is denser than the cloud
+  // A sharpened point lies within 0.15 spacings of its edge on clean data:
+  // a line takes the members within 1.5 spacings (plus the noise) of it,
+  // so parallel edges three spacings apart are traced apart. 1 or 2
+  // spacings did worse on the 50k corpus (oblong lost a rounded loop's
+  // rim at 1; pinion, spool and couplingdown moved by 0.2-0.6 U either way).
+  const double lateral = 1.5 * result.average_spacing + 2 * result.noise_estimate;
+  // Junctions: end lines pass within 1 spacing of their meeting point
+  // (or within 25 degrees of it, seen from the end).
+  const double junction_lateral = result.average_spacing + 2 * result.noise_estimate;
+  std::vector<std::vector<detail::TracedPolyline>> per_cluster(clusters.size());
+  tbb::parallel_for(std::size_t(0), clusters.size(), [&](std::size_t c) {
+    per_cluster[c] = detail::trace_polylines(clusters[c], edge_points, edge_directions, options.successor_k, step, lateral,
+                                             options.min_cluster_size);
+  });
+  std::vector<detail::TracedPolyline> traced;
+  for (auto& lines : per_cluster)
+    for (auto& line : lines) traced.push_back(std::move(line));
+  // A polyline shorter than two successor steps is a stray cluster, not an edge.
+  traced.erase(std::remove_if(traced.begin(), traced.end(), [&](const auto& t) { return t.length() < 2 * step; }), traced.end());
+  // A junction lies on the surface: within 2 spacings (or 3 noise
+  // deviations) of a data point.
+  std::vector<std::uint32_t> ids;
+  std::vector<double> d2;
+  auto distance_to_data = [&](const Vec3& p) {
+    input_index.nearest(p, 1, ids, d2);
+    return std::sqrt(d2[0]);
+  };
+  // A polyline that runs off the data (its median vertex farther than 1.1
+  // spacings from every point, the sharpening's own bound) is a chord, not
+  // an edge: on holes a few spacings across the plane fits cut inside the
+  // rim (anchor 50k: four rims 1.7 spacings off; their protecting balls
+  // shrank to a third of their size and 64% of the protected segments were
+  // not mesh edges).
+  const double max_offset = 1.1 * result.average_spacing + 2 * result.noise_estimate;
+  const std::size_t traced_count = traced.size();
+  traced.erase(std::remove_if(traced.begin(), traced.end(),
+                              [&](const detail::TracedPolyline& t) {
+                                std::vector<double> offsets;
+                                for (const Vec3& v : t.vertices) offsets.push_back(distance_to_data(v));
+                                std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+                                return offsets[offsets.size() / 2] > max_offset;
+                              }),
+               traced.end());
+  result.off_data_polylines = traced_count - traced.size();
+  result.graph = detail::connect_polylines(std::move(traced), options.junction_factor, distance_to_data,
+                                           std::max(2 * result.average_spacing, 3 * result.noise_estimate),
+                                           kMaxJunctionRadius * result.average_spacing + 3 * result.noise_estimate,
+                                           junction_lateral);
+  report_progress(progress, "polylines", 1.0);
+}
+
 FeatureResult extract_features_centred(const PointSet& input, const FeatureOptions& options, const Progress& progress) {
   FeatureResult result;
   const BoundingBox box = bounding_box(input.points);
@@ -243,35 +337,7 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
           edge_points.push_back(points[i]);
           edge_directions.push_back(result.points[i].direction);
         }
-    detail::SharpeningOptions sharpening;
-    sharpening.radius = 3 * result.convolution_radius;
-    sharpening.min_angle_deg = options.min_dihedral_angle;
-    // Two planes fit a sharp edge up to the noise and the curvature sagitta.
-    sharpening.max_residual = std::max(0.05 * sharpening.radius, 1.5 * result.noise_estimate);
-    // The nearest sample to a point of a real edge lies within 0.6 average
-    // spacings half of the time, within 1.1 nine times in ten; the virtual
-    // corner of a chamfer w wide lies w/2 off the data. A fit closer than
-    // 0.6 is taken; farther, the plane fallback is tried first; beyond 1.1,
-    // neither is taken.
-    const double avg = result.average_spacing, noise = result.noise_estimate;
-    sharpening.close_to_data = 0.6 * avg + 2 * noise;
-    sharpening.max_data_offset = 1.1 * avg + 2 * noise;
-    // RANSAC planes within 5 spacings (a narrow face there has a few dozen
-    // points), inliers within 0.15 spacings (the sagitta of a cylinder of
-    // radius 80 spacings) or the noise, each face reaching the edge within
-    // 1.5 spacings. The fallback fits positions, not normals, so a curved
-    // face splits into planes a few degrees apart: it asks for 30 degrees
-    // (fandisk's 22-degree creases on curved faces otherwise come out).
-    sharpening.plane_tolerance = 0.15 * avg + 2 * noise;
-    sharpening.plane_radius = 5 * avg;
-    sharpening.face_reach = 1.5 * avg + 2 * noise;
-    sharpening.plane_min_angle_deg = 30;
-    // A corner point is taken only by a RANSAC pair at least 45 degrees apart
-    // (30 let the adjacent plane strips of holes 8 spacings wide through:
-    // anchor 50k lost its hole rims) within r of it (a point farther from
-    // every edge than the band of edge points is no edge's).
-    sharpening.corner_min_angle_deg = 45;
-    sharpening.corner_shift = result.convolution_radius;
+    const detail::SharpeningOptions sharpening = sharpening_options(result, options);
     detail::sharpen_edge_points(*cloud, result.points, *index, sharpening, edge_ids, edge_points, edge_directions);
     for (std::uint32_t id : edge_ids) result.fitted_corner_points += result.points[id].type == PointClass::Corner;
     result.unsharpened_edge_points = result.edge_points - (edge_ids.size() - result.fitted_corner_points);
@@ -285,60 +351,7 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
     result.clusters = clusters.size();
     report_progress(progress, "clustering", 1.0);
   }
-  {
-    StageTimer timer(result.stages, "polylines");
-    report_progress(progress, "polylines", 0.0);
-    const double step = 4 * result.average_spacing;  // r_p floor: the thinned band is denser than the cloud
-    // A sharpened point lies within 0.15 spacings of its edge on clean data:
-    // a line takes the members within 1.5 spacings (plus the noise) of it,
-    // so parallel edges three spacings apart are traced apart. 1 or 2
-    // spacings did worse on the 50k corpus (oblong lost a rounded loop's
-    // rim at 1; pinion, spool and couplingdown moved by 0.2-0.6 U either way).
-    const double lateral = 1.5 * result.average_spacing + 2 * result.noise_estimate;
-    // Junctions: end lines pass within 1 spacing of their meeting point
-    // (or within 25 degrees of it, seen from the end).
-    const double junction_lateral = result.average_spacing + 2 * result.noise_estimate;
-    std::vector<std::vector<detail::TracedPolyline>> per_cluster(clusters.size());
-    tbb::parallel_for(std::size_t(0), clusters.size(), [&](std::size_t c) {
-      per_cluster[c] = detail::trace_polylines(clusters[c], edge_points, edge_directions, options.successor_k, step, lateral,
-                                               options.min_cluster_size);
-    });
-    std::vector<detail::TracedPolyline> traced;
-    for (auto& lines : per_cluster)
-      for (auto& line : lines) traced.push_back(std::move(line));
-    // A polyline shorter than two successor steps is a stray cluster, not an edge.
-    traced.erase(std::remove_if(traced.begin(), traced.end(), [&](const auto& t) { return t.length() < 2 * step; }), traced.end());
-    // A junction lies on the surface: within 2 spacings (or 3 noise
-    // deviations) of a data point.
-    std::vector<std::uint32_t> ids;
-    std::vector<double> d2;
-    auto distance_to_data = [&](const Vec3& p) {
-      input_index->nearest(p, 1, ids, d2);
-      return std::sqrt(d2[0]);
-    };
-    // A polyline that runs off the data (its median vertex farther than 1.1
-    // spacings from every point, the sharpening's own bound) is a chord, not
-    // an edge: on holes a few spacings across the plane fits cut inside the
-    // rim (anchor 50k: four rims 1.7 spacings off; their protecting balls
-    // shrank to a third of their size and 64% of the protected segments were
-    // not mesh edges).
-    const double max_offset = 1.1 * result.average_spacing + 2 * result.noise_estimate;
-    const std::size_t traced_count = traced.size();
-    traced.erase(std::remove_if(traced.begin(), traced.end(),
-                                [&](const detail::TracedPolyline& t) {
-                                  std::vector<double> offsets;
-                                  for (const Vec3& v : t.vertices) offsets.push_back(distance_to_data(v));
-                                  std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
-                                  return offsets[offsets.size() / 2] > max_offset;
-                                }),
-                 traced.end());
-    result.off_data_polylines = traced_count - traced.size();
-    result.graph = detail::connect_polylines(std::move(traced), options.junction_factor, distance_to_data,
-                                             std::max(2 * result.average_spacing, 3 * result.noise_estimate),
-                                             kMaxJunctionRadius * result.average_spacing + 3 * result.noise_estimate,
-                                             junction_lateral);
-    report_progress(progress, "polylines", 1.0);
-  }
+  trace_feature_graph(clusters, edge_points, edge_directions, *input_index, options, progress, result);
   return result;
 }
 
