@@ -104,6 +104,26 @@ std::vector<std::uint32_t> common_views(const Triangle& f, const StereoModel& mo
   return abc;
 }
 
+// Beyond the thesis: the other side of the visibility constraint (6.3.2).
+// A track hidden behind kept triangles (at most max_crossings crossings)
+// from most of its views is a matching outlier: it makes pits behind the
+// surface that no line of sight crosses. Marks them in stats.occluded.
+void mark_occluded_tracks(const SightCrossings& crossings, const StereoModel& model, std::uint32_t max_crossings,
+                          SoupFilterStats& stats) {
+  std::vector<bool>& occluded = stats.occluded;
+  occluded.assign(model.tracks.size(), false);
+  std::vector<std::uint32_t> blocked_views;
+  for (std::size_t t = 0; t < model.tracks.size(); ++t) {
+    blocked_views.clear();
+    for (const auto& [view, face] : crossings.per_track[t])
+      if (crossings.per_face[face] <= max_crossings) blocked_views.push_back(view);
+    std::sort(blocked_views.begin(), blocked_views.end());
+    const auto blocked = static_cast<std::size_t>(std::unique(blocked_views.begin(), blocked_views.end()) - blocked_views.begin());
+    occluded[t] = 2 * blocked > model.tracks[t].views.size();
+    stats.occluded_tracks += occluded[t];
+  }
+}
+
 }  // namespace
 
 SoupFilterStats filter_soup(TriangleSoup& soup, const StereoModel& model, const std::vector<GreyImage>& images,
@@ -168,28 +188,13 @@ SoupFilterStats filter_soup(TriangleSoup& soup, const StereoModel& model, const 
     const auto max_crossings = static_cast<std::uint32_t>(options.max_crossings);
     for (std::size_t s = 0; s < survivors.faces.size(); ++s)
       if (crossings.per_face[s] > max_crossings) verdict[survivor_of[s]] = Visibility;
-    // Beyond the thesis: the other side of the same constraint. A track hidden
-    // behind kept triangles from most of its views is a matching outlier (it
-    // makes pits behind the surface that no line of sight crosses); its
-    // triangles go.
-    {
-      std::vector<bool>& occluded = stats.occluded;
-      occluded.assign(model.tracks.size(), false);
-      std::vector<std::uint32_t> blocked_views;
-      for (std::size_t t = 0; t < model.tracks.size(); ++t) {
-        blocked_views.clear();
-        for (const auto& [view, face] : crossings.per_track[t])
-          if (crossings.per_face[face] <= max_crossings) blocked_views.push_back(view);
-        std::sort(blocked_views.begin(), blocked_views.end());
-        const auto blocked = static_cast<std::size_t>(std::unique(blocked_views.begin(), blocked_views.end()) - blocked_views.begin());
-        occluded[t] = 2 * blocked > model.tracks[t].views.size();
-        stats.occluded_tracks += occluded[t];
-      }
-      for (std::size_t s = 0; options.remove_occluded_tracks && s < survivors.faces.size(); ++s) {
-        const Triangle& t = survivors.faces[s];
-        if (verdict[survivor_of[s]] != Visibility && (occluded[t[0]] || occluded[t[1]] || occluded[t[2]]))
-          verdict[survivor_of[s]] = Occluded;
-      }
+    // The triangles of occluded tracks go.
+    mark_occluded_tracks(crossings, model, max_crossings, stats);
+    const std::vector<bool>& occluded = stats.occluded;
+    for (std::size_t s = 0; options.remove_occluded_tracks && s < survivors.faces.size(); ++s) {
+      const Triangle& t = survivors.faces[s];
+      if (verdict[survivor_of[s]] != Visibility && (occluded[t[0]] || occluded[t[1]] || occluded[t[2]]))
+        verdict[survivor_of[s]] = Occluded;
     }
   }
 
