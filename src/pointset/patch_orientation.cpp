@@ -55,6 +55,86 @@ constexpr double kMinVote = 5;
 /// Largest |u . n| over the two normals, u the unit chord from a to b.
 double steepness(const Vec3& u, const Vec3& na, const Vec3& nb) { return std::max(std::abs(dot(u, na)), std::abs(dot(u, nb))); }
 
+// Patch signs along a maximum spanning tree of the votes, from the largest
+// patch of each connected group: the strongest evidence first, as the MST
+// does with single edges (3torus.off, a polyhedral triple torus: the MST
+// left 39% of the reliable normals inverted, patch by patch; 0.2% after).
+std::map<std::uint32_t, int> patch_signs(const std::map<std::uint32_t, std::vector<std::pair<std::uint32_t, double>>>& around,
+                                         const std::vector<std::uint32_t>& patch, const std::vector<char>& reliable) {
+  const std::size_t n = patch.size();
+  std::map<std::uint32_t, int> sign;
+  auto sign_of = [&](std::uint32_t q) {
+    const auto it = sign.find(q);
+    return it == sign.end() ? 1 : it->second;
+  };
+  {
+    std::map<std::uint32_t, std::size_t> size;
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (reliable[i]) ++size[patch[i]];
+    std::vector<std::uint32_t> starts;
+    for (const auto& entry : around) starts.push_back(entry.first);
+    std::stable_sort(starts.begin(), starts.end(), [&](std::uint32_t a, std::uint32_t b) { return size[a] > size[b]; });
+    std::map<std::uint32_t, char> reached;
+    using Link = std::tuple<double, std::uint32_t, std::uint32_t, double>;  // |vote|, from, to, vote
+    for (std::uint32_t start : starts) {
+      if (reached[start]) continue;
+      reached[start] = 1;
+      std::priority_queue<Link> queue;
+      for (const auto& [other, vote] : around.at(start)) queue.emplace(std::abs(vote), start, other, vote);
+      while (!queue.empty()) {
+        const auto [strength, from, to, vote] = queue.top();
+        queue.pop();
+        if (reached[to]) continue;
+        reached[to] = 1;
+        sign[to] = vote >= 0 ? sign_of(from) : -sign_of(from);
+        for (const auto& [other, next] : around.at(to))
+          if (!reached[other]) queue.emplace(std::abs(next), to, other, next);
+      }
+    }
+  }
+  // Then, worst first, each patch that most of its neighbours' votes are against.
+  for (std::size_t round = 0; round < around.size(); ++round) {
+    double worst = -kAgainst;
+    std::uint32_t flip = n;
+    for (const auto& [q, list] : around) {
+      double total = 0, balance = 0;
+      for (const auto& [other, vote] : list) total += std::abs(vote);
+      int against = 0;
+      for (const auto& [other, vote] : list) {
+        const double agreement = vote * sign_of(q) * sign_of(other);
+        balance += agreement;
+        against += agreement < -0.05 * total;
+      }
+      if (total > 0 && against >= 2 && balance / total < worst) worst = balance / total, flip = q;
+    }
+    if (flip == n) break;
+    sign[flip] = -sign_of(flip);
+  }
+  return sign;
+}
+
+// Which of the two consistent orientations faces out: at the points
+// farthest along each axis direction the outward normal points that way.
+// (The MST's rule, the highest point's normal up, is a coin toss at an apex
+// whose faces are vertical.)
+void face_outward(const std::vector<Vec3>& p, const std::vector<Vec3>& normal, std::vector<int>& point_sign) {
+  const std::size_t n = p.size();
+  if (std::any_of(point_sign.begin(), point_sign.end(), [](int s) { return s < 0; })) {
+    const std::size_t extreme = std::max<std::size_t>(10, n / 200);
+    double outward = 0;
+    std::vector<std::uint32_t> order(n);
+    for (int axis = 0; axis < 3; ++axis)
+      for (double direction : {-1.0, 1.0}) {
+        std::iota(order.begin(), order.end(), 0u);
+        std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(std::min(extreme, n)), order.end(),
+                          [&](std::uint32_t a, std::uint32_t b) { return direction * p[a][axis] > direction * p[b][axis]; });
+        for (std::size_t r = 0; r < std::min(extreme, n); ++r) outward += point_sign[order[r]] * direction * normal[order[r]][axis];
+      }
+    if (outward < 0)
+      for (int& s : point_sign) s = -s;
+  }
+}
+
 }  // namespace
 
 std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uint32_t>& unreliable, double spacing, int k) {
@@ -123,58 +203,11 @@ std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uin
     around[pair.second].push_back({pair.first, vote});
   }
 
-  // Patch signs along a maximum spanning tree of the votes, from the largest
-  // patch of each connected group: the strongest evidence first, as the MST
-  // does with single edges (3torus.off, a polyhedral triple torus: the MST
-  // left 39% of the reliable normals inverted, patch by patch; 0.2% after).
-  std::map<std::uint32_t, int> sign;
+  const std::map<std::uint32_t, int> sign = patch_signs(around, patch, reliable);
   auto sign_of = [&](std::uint32_t q) {
     const auto it = sign.find(q);
     return it == sign.end() ? 1 : it->second;
   };
-  {
-    std::map<std::uint32_t, std::size_t> size;
-    for (std::uint32_t i = 0; i < n; ++i)
-      if (reliable[i]) ++size[patch[i]];
-    std::vector<std::uint32_t> starts;
-    for (const auto& entry : around) starts.push_back(entry.first);
-    std::stable_sort(starts.begin(), starts.end(), [&](std::uint32_t a, std::uint32_t b) { return size[a] > size[b]; });
-    std::map<std::uint32_t, char> reached;
-    using Link = std::tuple<double, std::uint32_t, std::uint32_t, double>;  // |vote|, from, to, vote
-    for (std::uint32_t start : starts) {
-      if (reached[start]) continue;
-      reached[start] = 1;
-      std::priority_queue<Link> queue;
-      for (const auto& [other, vote] : around[start]) queue.emplace(std::abs(vote), start, other, vote);
-      while (!queue.empty()) {
-        const auto [strength, from, to, vote] = queue.top();
-        queue.pop();
-        if (reached[to]) continue;
-        reached[to] = 1;
-        sign[to] = vote >= 0 ? sign_of(from) : -sign_of(from);
-        for (const auto& [other, next] : around[to])
-          if (!reached[other]) queue.emplace(std::abs(next), to, other, next);
-      }
-    }
-  }
-  // Then, worst first, each patch that most of its neighbours' votes are against.
-  for (std::size_t round = 0; round < around.size(); ++round) {
-    double worst = -kAgainst;
-    std::uint32_t flip = n;
-    for (const auto& [q, list] : around) {
-      double total = 0, balance = 0;
-      for (const auto& [other, vote] : list) total += std::abs(vote);
-      int against = 0;
-      for (const auto& [other, vote] : list) {
-        const double agreement = vote * sign_of(q) * sign_of(other);
-        balance += agreement;
-        against += agreement < -0.05 * total;
-      }
-      if (total > 0 && against >= 2 && balance / total < worst) worst = balance / total, flip = q;
-    }
-    if (flip == n) break;
-    sign[flip] = -sign_of(flip);
-  }
 
   // Reliable normals take their patch's sign; the others follow the majority
   // of their reliable neighbours.
@@ -189,24 +222,7 @@ std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uin
       if (reliable[j]) balance += point_sign[j];
     if (balance < 0) point_sign[i] = -1;
   }
-  // Which of the two consistent orientations faces out: at the points
-  // farthest along each axis direction the outward normal points that way.
-  // (The MST's rule, the highest point's normal up, is a coin toss at an apex
-  // whose faces are vertical.)
-  if (std::any_of(point_sign.begin(), point_sign.end(), [](int s) { return s < 0; })) {
-    const std::size_t extreme = std::max<std::size_t>(10, n / 200);
-    double outward = 0;
-    std::vector<std::uint32_t> order(n);
-    for (int axis = 0; axis < 3; ++axis)
-      for (double direction : {-1.0, 1.0}) {
-        std::iota(order.begin(), order.end(), 0u);
-        std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(std::min(extreme, n)), order.end(),
-                          [&](std::uint32_t a, std::uint32_t b) { return direction * p[a][axis] > direction * p[b][axis]; });
-        for (std::size_t r = 0; r < std::min(extreme, n); ++r) outward += point_sign[order[r]] * direction * normal[order[r]][axis];
-      }
-    if (outward < 0)
-      for (int& s : point_sign) s = -s;
-  }
+  face_outward(p, normal, point_sign);
   for (std::uint32_t i = 0; i < n; ++i)
     if (point_sign[i] < 0) normal[i] = -1.0 * normal[i], ++flipped;
   return flipped;
