@@ -19,9 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <random>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
