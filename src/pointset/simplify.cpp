@@ -16,18 +16,19 @@ namespace sharpmesh {
 std::size_t grid_simplify(PointSet& points, double cell_size) {
   if (!(cell_size > 0) || !std::isfinite(cell_size))
     throw InvalidArgument("grid simplification: cell size must be positive (got " + format_number(cell_size) + ")");
-  // Points at one location (a single point included) fill one cell.
+  // Points at one location (a single point included) fill one cell; the
+  // set's check below refuses them as degenerate input.
   const bool finite = std::all_of(points.points.begin(), points.points.end(), [](const Vec3& p) {
     return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
   });
-  if (!points.empty() && finite && bounding_box(points.points).diagonal() == 0) {
+  const double diagonal = finite && !points.empty() ? bounding_box(points.points).diagonal() : 0.0;
+  if (finite && !points.empty() && diagonal == 0) {
     std::vector<bool> first(points.size(), false);
     first[0] = true;
     points.keep_if(first);
     return first.size() - 1;
   }
   check_point_set(points, 1, "grid simplification");
-  const double diagonal = bounding_box(points.points).diagonal();
   if (diagonal / cell_size > 1e7)
     throw InvalidArgument("grid simplification: cell size " + format_number(cell_size) + " is below 1e-7 of the diagonal");
   const std::vector<detail::Point3> cgal_points = detail::to_cgal(points.points);
