@@ -45,10 +45,6 @@ Command add_stereo(CLI::App& app);
 Command add_view(CLI::App& app);
 Command add_render(CLI::App& app);
 
-/// The feature-detection flags of `features`, shared with `reconstruct`.
-void add_feature_options(CLI::App& sub, FeatureOptions& options);
-/// The feature part of a report: parameters, derived radii, counts, junctions, stages.
-nlohmann::json feature_report(const FeatureResult& result, const FeatureOptions& options, double diagonal);
 
 /// Progress on stderr: a live percentage on a terminal, one line per stage otherwise.
 class ProgressPrinter {

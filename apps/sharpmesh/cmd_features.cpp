@@ -3,67 +3,13 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "option_flags.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/features.h"
 #include "sharpmesh/io.h"
+#include "sharpmesh/report.h"
 
 namespace sharpmesh::cli {
-
-const char* junction_name(JunctionType t) {
-  return t == JunctionType::Dart ? "dart" : t == JunctionType::Cusp ? "cusp" : "corner";
-}
-
-void add_feature_options(CLI::App& sub, FeatureOptions& f) {
-  const char* g = "Feature detection (thesis 7.2)";
-  sub.add_option("--offset-radius", f.offset_radius, "Voronoi offset radius R, fraction of the bounding-sphere radius (7.2.1)")
-      ->capture_default_str()->group(g);
-  sub.add_option("--convolution-radius", f.convolution_radius,
-                 "Convolution radius r, fraction of R; 0 = automatic: R/10, widened to 4 estimated noise deviations")
-      ->capture_default_str()->group(g);
-  sub.add_option("--t1", f.t1, "Smooth if lambda0/lambda1 > t1 (Algorithm 1)")->capture_default_str()->group(g);
-  sub.add_option("--t2", f.t2, "Edge if lambda1/lambda2 >= t2, else corner (Algorithm 1)")->capture_default_str()->group(g);
-  sub.add_option("--cluster-k", f.cluster_k, "Neighbours of rho_k for close pairs (Algorithm 2)")->capture_default_str()->group(g);
-  sub.add_option("--cluster-angle", f.cluster_angle, "theta: max angle between edge directions and a close pair, degrees")
-      ->capture_default_str()->group(g);
-  sub.add_option("--successor-k", f.successor_k, "r_p = rho_k(p) of the successor procedure (7.2.3)")->capture_default_str()->group(g);
-  sub.add_option("--junction-factor", f.junction_factor, "r_junc = factor x spacing of a polyline's last four points (7.2.3)")
-      ->capture_default_str()->group(g);
-  sub.add_option("--denoise-k", f.denoise_k,
-                 "Jet-smooth over k neighbours before the VCM; -1 = automatic (noise above half the spacing), 0 = never")
-      ->capture_default_str()->group(g);
-  sub.add_flag("!--no-corner-fitting", f.fit_corner_points,
-               "Keep corner points (Algorithm 1) out of the polylines, as the thesis does; by default those on the line of two "
-               "faces 45+ degrees apart become edge points")
-      ->group(g);
-}
-
-nlohmann::json feature_report(const FeatureResult& r, const FeatureOptions& o, double diagonal) {
-  nlohmann::json junctions = nlohmann::json::array();
-  std::size_t counts[3] = {0, 0, 0};
-  for (const Junction& j : r.graph.junctions) {
-    junctions.push_back({{"position", j.position}, {"type", junction_name(j.type)}, {"degree", j.degree}});
-    ++counts[static_cast<int>(j.type)];
-  }
-  std::size_t closed = 0;
-  for (const Polyline& p : r.graph.polylines) closed += p.size() > 2 && p.front() == p.back();
-  return {{"parameters",
-           {{"offset_radius", o.offset_radius}, {"convolution_radius", o.convolution_radius}, {"t1", o.t1}, {"t2", o.t2},
-            {"cluster_k", o.cluster_k}, {"cluster_angle", o.cluster_angle}, {"min_cluster_size", o.min_cluster_size},
-            {"successor_k", o.successor_k}, {"junction_factor", o.junction_factor},
-            {"denoise_k", o.denoise_k}, {"fit_corner_points", o.fit_corner_points}}},
-          {"derived",
-           {{"R", length_json(r.offset_radius, diagonal)}, {"r", length_json(r.convolution_radius, diagonal)},
-            {"noise_estimate", length_json(r.noise_estimate, diagonal)},
-            {"average_spacing", length_json(r.average_spacing, diagonal)}, {"denoise_k", r.denoise_k},
-            {"denoise_passes", r.denoise_passes}}},
-          {"counts",
-           {{"points", r.points.size()}, {"edge_points", r.edge_points}, {"corner_points", r.corner_points},
-            {"fitted_corner_points", r.fitted_corner_points},
-            {"unsharpened_edge_points", r.unsharpened_edge_points}, {"clusters", r.clusters}, {"pruned_clusters", r.pruned_clusters}, {"off_data_polylines", r.off_data_polylines}, {"polylines", r.graph.polylines.size()},
-            {"closed_polylines", closed}, {"darts", counts[0]}, {"cusps", counts[1]}, {"corners", counts[2]}}},
-          {"junctions", junctions},
-          {"stages", stages_json(r.stages)}};
-}
 
 Command add_features(CLI::App& app) {
   struct Options {
@@ -78,7 +24,7 @@ Command add_features(CLI::App& app) {
   sub->add_option("-o,--output", o->output, "Output polylines (CGAL text format: n x1 y1 z1 ... per line)")->required();
   sub->add_option("--edge-points", o->edge_points, "Write every point with its class, edge direction and eigenvalue ratios (.ply)");
   sub->add_flag("--ascii", o->ascii, "Write --edge-points as ASCII PLY");
-  add_feature_options(*sub, o->features);
+  add_option_fields(*sub, o->features, feature_option_fields());
   common->add_to(*sub);
   auto run = [o, common] {
     check_output(o->output, "polylines");
@@ -92,7 +38,7 @@ Command add_features(CLI::App& app) {
     write_polylines(o->output, result.graph.polylines);
     if (!o->edge_points.empty()) write_feature_points(o->edge_points, points.points, result.points, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
     const double diagonal = bounding_box(points.points).diagonal();
-    nlohmann::json report = feature_report(result, o->features, diagonal);
+    nlohmann::json report = nlohmann::json::parse(feature_report_json(result, o->features, diagonal));
     if (!common->quiet) {
       const auto& c = report["counts"];
       char line[256];

@@ -124,8 +124,17 @@ struct ReconstructOptions {
   void check(std::size_t n) const;
 };
 
+/// Something about a result its user should look at: a stable code
+/// (`refinement_runaway`, `points_off_mesh`, ...) and a one-line message.
+/// The CLI prints the messages; Python's report lists both.
+struct Warning {
+  std::string code;
+  std::string message;
+};
+
 struct ReconstructResult {
   SurfaceMesh mesh;
+  double diagonal = 0;  ///< of the input's bounding box: the report gives lengths also as fractions of it
   double average_spacing = 0;
   double d_prime = 0;
   double estimated_facets = 0;
@@ -176,6 +185,7 @@ struct ReconstructResult {
   std::size_t off_data_points_before_retry = 0;  ///< off the first mesh (before any retry)
   std::size_t off_data_flips = 0;    ///< normals flipped by the kept retry (0: none kept)
   double max_data_distance = 0;      ///< largest distance of an input point to the output mesh
+  std::vector<Warning> warnings;
   std::vector<StageTiming> stages;
 };
 

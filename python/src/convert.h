@@ -83,10 +83,8 @@ PointSet to_point_set(const DoubleArray& points, const py::object& normals);
 #include "sharpmesh/features.h"
 namespace sharpmesh::python {
 py::dict stages_dict(const std::vector<StageTiming>& stages);
-/// sharpmesh.Features from a FeatureResult.
-py::object make_features(const FeatureResult& result);
-/// Checked feature options (the flags of `sharpmesh features`).
-FeatureOptions feature_options(double offset_radius, double convolution_radius, double t1, double t2, int cluster_k,
-                               double cluster_angle, int successor_k, double junction_factor, int denoise_k,
-                               bool fit_corner_points);
+/// sharpmesh.Features from a FeatureResult and its report.
+py::object make_features(const FeatureResult& result, const py::object& report);
+/// A JSON text as Python objects.
+py::object json_report(const std::string& text);
 }  // namespace sharpmesh::python

@@ -1,5 +1,7 @@
 """The pipeline from Python: toolbox, features, reconstruction, evaluation,
 and a round trip against the command-line tool on the same input."""
+import json
+import re
 import subprocess
 import threading
 import time
@@ -47,16 +49,17 @@ def test_features_of_a_cube_are_its_twelve_edges(cube, cube_cloud):
 def test_corner_fitting_is_on_by_default_and_can_be_turned_off(cube_cloud):
     fitted = sm.extract_features(cube_cloud.points)
     thesis = sm.extract_features(cube_cloud.points, fit_corner_points=False)
-    assert fitted.report["fitted_corner_points"] > 0
-    assert thesis.report["fitted_corner_points"] == 0
-    assert thesis.report["corner_points"] == fitted.report["corner_points"]
+    assert fitted.report["counts"]["fitted_corner_points"] > 0
+    assert thesis.report["counts"]["fitted_corner_points"] == 0
+    assert thesis.report["counts"]["corner_points"] == fitted.report["counts"]["corner_points"]
+    assert thesis.report["parameters"]["fit_corner_points"] is False
 
 
 def test_reconstruct_matches_the_cli_on_the_same_input(tmp_path, cli, cube_cloud):
     cloud = tmp_path / "cube.ply"
     sm.write_points(str(cloud), cube_cloud.points)
-    subprocess.run([cli, "reconstruct", str(cloud), "-o", str(tmp_path / "cli.ply"),
-                    "--sharp-edges", str(tmp_path / "cli.txt"), "-q"], check=True)
+    subprocess.run([cli, "reconstruct", str(cloud), "-o", str(tmp_path / "cli.ply"), "--sharp-edges", str(tmp_path / "cli.txt"),
+                    "--report", str(tmp_path / "cli.json"), "-q"], check=True)
     cli_mesh = sm.read_mesh(str(tmp_path / "cli.ply"))
     cli_edges = sm.read_polylines(str(tmp_path / "cli.txt"))
 
@@ -68,6 +71,51 @@ def test_reconstruct_matches_the_cli_on_the_same_input(tmp_path, cli, cube_cloud
     assert result.report["protection"]["represented_segments"] == result.report["protection"]["protected_segments"]
     topology = sm.check_topology(result.mesh)
     assert topology["closed"] and topology["manifold"] and not topology["self_intersecting"]
+    # The same report, but for what only a command line has: its file names,
+    # time limit and wall-clock times.
+    cli_report = json.loads((tmp_path / "cli.json").read_text())
+    for key in ("command", "input", "output", "seconds"):
+        del cli_report[key]
+    for key in ("features_file", "time_limit_s"):
+        del cli_report["parameters"][key]
+    del cli_report["self_intersections"]["written_invalid"]
+    assert without_timings(cli_report) == without_timings(result.report)
+
+
+def without_timings(report):
+    if isinstance(report, dict):
+        return {k: without_timings(v) for k, v in report.items() if k != "stages"}
+    return report
+
+
+def test_every_option_is_a_flag_and_a_keyword(cli):
+    help_text = subprocess.run([cli, "reconstruct", "--help"], check=True, capture_output=True, text=True).stdout
+    flags = set(re.findall(r"^\s+(?:-[a-z],)?(--[a-z0-9-]+)", help_text, re.M))
+    expected = set()
+    for name, default in sm.ReconstructOptions().to_dict().items():
+        flag = name.replace("_", "-")
+        expected.add(f"--no-{flag}" if default is True else f"--{flag}")
+        assert getattr(sm.ReconstructOptions(**{name: default}), name) == default
+    own = {"--help", "--output", "--no-features", "--features", "--sharp-edges", "--time-limit", "--allow-invalid", "--ascii",
+           "--threads", "--quiet", "--report"}
+    assert flags == expected | own, (flags - expected - own, expected - flags)
+    features_help = subprocess.run([cli, "features", "--help"], check=True, capture_output=True, text=True).stdout
+    for name in sm.FeatureOptions().to_dict():
+        assert name.replace("_", "-") in features_help, name
+
+
+def test_options_objects_and_keywords_agree(cube_cloud):
+    options = sm.ReconstructOptions(delta=6, snapping=False)
+    assert repr(options) == "ReconstructOptions(delta=6.0, snapping=False)"
+    by_object = sm.reconstruct(cube_cloud.points, options=options, no_features=True)
+    by_keywords = sm.reconstruct(cube_cloud.points, delta=6, no_snapping=True, no_features=True)
+    np.testing.assert_array_equal(by_object.mesh.faces, by_keywords.mesh.faces)
+    assert by_object.report["parameters"] == by_keywords.report["parameters"]
+    assert by_object.report["parameters"]["delta"] == 6 and by_object.report["parameters"]["snapping"] is False
+    with pytest.raises(sm.InvalidArgument, match="unknown option 'delt'"):
+        sm.reconstruct(cube_cloud.points, delt=6)
+    with pytest.raises(sm.InvalidArgument, match="spacing_k"):
+        sm.ReconstructOptions(spacing_k=2.5)
 
 
 def test_reconstruction_is_accurate_and_keeps_the_edges(cube, cube_cloud):
@@ -77,8 +125,8 @@ def test_reconstruction_is_accurate_and_keeps_the_edges(cube, cube_cloud):
     assert e["sharp_max"] < 0.005 * e["diagonal"]
     fit = result.report["data_fit"]  # every input point on the mesh: no retry
     assert fit["points_off_mesh"] == 0 and fit["points_off_first_mesh"] == 0
-    assert 0 < fit["max_distance"] < result.report["derived"]["average_spacing"]
-    assert 0 < fit["max_distance"] < fit["off_distance"]
+    assert 0 < fit["max_distance"]["value"] < result.report["derived"]["average_spacing"]["value"]
+    assert 0 < fit["max_distance"]["value"] < fit["off_distance"]["value"]
     baseline = sm.reconstruct(cube_cloud.points, delta=3.5, no_features=True)
     assert baseline.features is None and "protection" not in baseline.report
     assert result.report["counts"]["enclosed_flipped_normals"] == 0  # a consistent cube: nothing to flip
@@ -145,17 +193,23 @@ def test_stereo_on_a_generated_scene(tmp_path, cli):
     assert report["counts"]["views"] == 8
     assert len(tracks) > 100 and len(mesh.faces) > 200
     truth = sm.read_mesh(str(scene / "ground_truth.ply"))
-    scene_size = 2 * report["half_diagonal"]
+    scene_size = 2 * report["derived"]["half_diagonal"]
     assert np.median(sm.distances_to_mesh(mesh.vertices, truth)) < 0.01 * scene_size
-    assert report["counts"]["fill_added"] > 0
-    _, _, thesis = sm.stereo(str(scene), no_fill=True, outlier_global=True)
-    assert thesis["counts"]["fill_added"] == 0 and "soup fill" in thesis["stages"]
-    assert thesis["counts"]["tracks_kept"] != report["counts"]["tracks_kept"]  # the thesis's global 3-sigma rule
+    assert report["counts"]["fill"]["added"] > 0
+    subprocess.run([cli, "stereo", str(scene), "-o", str(tmp_path / "cli.ply"), "--report", str(tmp_path / "cli.json"), "-q"],
+                   check=True)
+    cli_report = json.loads((tmp_path / "cli.json").read_text())
+    for key in ("command", "model", "images", "tracks_input", "output", "seconds"):
+        del cli_report[key]
+    assert without_timings(cli_report) == without_timings(report)
+    _, _, thesis = sm.stereo(str(scene), no_fill=True, outlier_relative=False)
+    assert thesis["counts"]["fill"]["added"] == 0 and "soup fill" in [s["name"] for s in thesis["stages"]]
+    assert thesis["counts"]["tracks"]["kept"] != report["counts"]["tracks"]["kept"]  # the thesis's global 3-sigma rule
     # Fused depth-map points skip the cone-angle test unless asked.
     fused_path = str(scene / "dense" / "fused.ply")
     _, kept, fused = sm.stereo(str(scene), tracks=fused_path, no_fill=True)
-    _, kept_coned, coned = sm.stereo(str(scene), tracks=fused_path, no_fill=True, cone_angle_on_fused=True)
-    assert fused["counts"]["cone_filter_skipped_fused"] and not coned["counts"]["cone_filter_skipped_fused"]
+    _, kept_coned, coned = sm.stereo(str(scene), tracks=fused_path, options=sm.StereoOptions(fill=False, cone_angle_on_fused=True))
+    assert fused["counts"]["tracks"]["cone_filter_skipped_fused"] and not coned["counts"]["tracks"]["cone_filter_skipped_fused"]
     assert len(kept) > len(kept_coned)
     with pytest.raises(sm.InvalidInput):
         sm.stereo(str(tmp_path / "nowhere"))

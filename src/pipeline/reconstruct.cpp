@@ -26,6 +26,8 @@ void ReconstructOptions::check(std::size_t n) const {
   if (!(ball_radius > 0 && ball_radius <= 2))
     throw InvalidArgument("ball radius is a fraction of d' in (0, 2] (got " + format_number(ball_radius) + ")");
   if (feature_mode == FeatureMode::Extract) features.check();
+  if (normal_source == NormalSource::Cvcm && feature_mode != FeatureMode::Extract)
+    throw InvalidArgument("normals 'cvcm' need feature extraction (the CVCM is computed there, 7.4)");
   if (!(trim_distance >= 0) || !std::isfinite(trim_distance))
     throw InvalidArgument("trim distance must be >= 0 (got " + format_number(trim_distance) + ")");
   if (!(poisson_spacing >= 0 && poisson_spacing <= 4))
@@ -87,6 +89,8 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
   }
   for (double* length : {&result.average_spacing, &result.d_prime, &result.criteria.edge_length, &result.criteria.distance})
     *length = frame.length_to_world(*length);
+  result.diagonal = bounding_box(input.points).diagonal();
+  result.warnings = detail::reconstruct_warnings(result, options);
   return result;
 }
 
@@ -131,8 +135,6 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
   const bool cvcm = options.normal_source == NormalSource::Cvcm ||
                     (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
   const bool needs_normals = !input.has_normals() || options.recompute_normals;
-  if (cvcm && needs_normals && options.feature_mode != FeatureMode::Extract)
-    throw InvalidArgument("CVCM normals need feature extraction (they come from its covariance measure)");
   const std::string estimated_name = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
   result.normal_source = !needs_normals ? (input_normals == InputNormals::Reoriented ? "input (re-oriented)" : "input")
                          : cvcm ? "cvcm" : estimated_name;

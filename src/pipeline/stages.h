@@ -107,4 +107,7 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
 /// measured again.
 void snap_to_data(const PipelineInput& in, FitStage& stage, ReconstructResult& result);
 
+/// The warnings of a finished reconstruction (ReconstructResult::warnings).
+std::vector<Warning> reconstruct_warnings(const ReconstructResult& result, const ReconstructOptions& options);
+
 }  // namespace sharpmesh::detail

@@ -1,0 +1,132 @@
+// The field table of ReconstructOptions (sharpmesh/option_fields.h): the
+// flags of `sharpmesh reconstruct`, the keywords and the option class of
+// sharpmesh.reconstruct, the "parameters" of its report.
+#include "core/field_builders.h"
+#include "sharpmesh/reconstruct.h"
+
+namespace sharpmesh {
+namespace {
+
+using O = ReconstructOptions;
+
+// NormalSource and NormalMethod as the one text option the user sees.
+OptionField<O> normals_field() {
+  OptionField<O> f;
+  f.name = "normals";
+  f.help =
+      "Normals when the input has none: auto (with features: CVCM, 7.4; where the CVCM is isotropic, jet normals for the "
+      "orientation, then crease-aware plane fits on clean clouds; else jet), cvcm (7.4 throughout), jet or pca (App. A.7)";
+  f.choices = {"auto", "cvcm", "jet", "pca"};
+  f.get = [](const O& o) -> FieldValue {
+    if (o.normal_source == NormalSource::Automatic) return std::string("auto");
+    if (o.normal_source == NormalSource::Cvcm) return std::string("cvcm");
+    return std::string(o.normals.method == NormalMethod::Pca ? "pca" : "jet");
+  };
+  f.set = [](O& o, const FieldValue& v) {
+    const std::string name = detail::from_field_value<std::string>(v, "normals");
+    if (name == "auto") {
+      o.normal_source = NormalSource::Automatic;
+    } else if (name == "cvcm") {
+      o.normal_source = NormalSource::Cvcm;
+    } else if (name == "jet" || name == "pca") {
+      o.normal_source = NormalSource::Estimated;
+      o.normals.method = name == "pca" ? NormalMethod::Pca : NormalMethod::Jet;
+    } else {
+      throw InvalidArgument("option normals takes auto, cvcm, jet or pca (got " + name + ")");
+    }
+  };
+  return f;
+}
+
+std::vector<OptionField<O>> reconstruct_fields() {
+  using detail::member_field;
+  using detail::nested_field;
+  std::vector<OptionField<O>> f = {
+      member_field("delta", "Mesh size d' = delta x average spacing; facet angle 25 deg, edges <= 2d', distance <= 0.6d' (7.3.2)",
+                   "average spacings", &O::delta),
+      member_field("spacing_k", "The average spacing is the mean distance to this many nearest neighbours (7.3.2)", "", &O::spacing_k),
+      member_field("ball_radius", "Protecting-ball radius (7.3.2)", "fraction of d'", &O::ball_radius),
+      member_field("ball_growth", "Grow each protecting ball to reach the implicit surface (beyond the thesis; off: every ball at ball_radius)",
+                   "", &O::adapt_balls_to_gap),
+      member_field("trim",
+                   "Remove facets farther than trim x d' + 2 avg from every input point, so open scans give open meshes (0: keep "
+                   "the closed Poisson surface)",
+                   "d'", &O::trim_distance),
+      member_field("clip_boundary", "After the trim, cut the facets that overhang the data at the boundary about one spacing from it",
+                   "", &O::clip_boundary),
+      member_field("poisson_spacing", "Solve Poisson on a grid simplification with cells of this size (0: on every point)", "d'",
+                   &O::poisson_spacing),
+      member_field("poisson_thinning",
+                   "Leave out of Poisson the points closer than this to an earlier point (0: keep all); near-coincident pairs "
+                   "cost most of Poisson's time",
+                   "average spacings", &O::poisson_thinning),
+      member_field("poisson_screening",
+                   "Pull of Poisson's function towards the points relative to its smoothness, lengths in average spacings: the "
+                   "same surface in any unit (0: CGAL's own weight, which depends on the unit)",
+                   "", &O::poisson_screening),
+      member_field("poisson_screening_noisy", "The same on clouds the feature extraction finds noisy (denoised, or noise of 0.05 avg or more)",
+                   "", &O::poisson_screening_noisy),
+      member_field("seed_spacing",
+                   "Before refinement, project one input point per cell of this size onto the implicit surface as a mesh "
+                   "vertex, so parts thinner than the facets are not stepped over (0: none)",
+                   "d'", &O::data_seed_spacing),
+      member_field("flattening",
+                   "Move the third vertices of the facets along protected edges onto the data's face planes (beyond the "
+                   "thesis; off: they stay on the Poisson surface)",
+                   "", &O::flatten_features),
+      member_field("snapping",
+                   "Move vertices (2 avg at most) onto the corners and data points the mesh misses by more than 0.25 and 0.75 "
+                   "avg (beyond the thesis; with extracted features only)",
+                   "", &O::snap_vertices),
+      member_field("intersection_repair",
+                   "Cut the facets that cross others out with a ring of neighbours and fill the holes (beyond the thesis)", "",
+                   &O::repair_self_intersections),
+      normals_field(),
+      nested_field(member_field("normal_k", "Neighbours for jet/pca normal estimation (App. A.7)", "", &NormalEstimationOptions::k),
+                   &O::normals),
+      nested_field(member_field("orient_k", "Neighbours for MST normal orientation (App. A.8)", "", &NormalOrientationOptions::k),
+                   &O::orientation),
+      member_field("recompute_normals", "Ignore the input's normals and estimate new ones", "", &O::recompute_normals),
+      member_field("input_normal_check",
+                   "Compare the input's normals with an MST orientation and re-orient them when their signs disagree (off: "
+                   "their signs come from elsewhere, e.g. the cameras, and are used as given)",
+                   "", &O::check_input_normals),
+      member_field("sign_repair",
+                   "Flip the normals the Poisson function contradicts and solve again, up to 3 times (beyond the thesis)", "",
+                   &O::repair_normal_signs),
+      member_field("winding_repair",
+                   "Flip the regions whose outer side the rest of the cloud encloses, by its generalized winding number, before "
+                   "Poisson (beyond the thesis; automatic normals with features only)",
+                   "", &O::repair_enclosed_normals),
+      member_field("orientation_anchors",
+                   "Grow the normal orientation's MST from the signs the cloud's occupancy and sheet parity decide, not from "
+                   "one seed per component (beyond the thesis; automatic normals with features only)",
+                   "", &O::anchor_orientation),
+      member_field("thin_vertices",
+                   "Add Poisson vertices half-way across parts and gaps 1-6 avg thick, so the function is not flat inside a thin "
+                   "plate (beyond the thesis)",
+                   "", &O::thin_part_vertices),
+      member_field("data_fit_retry",
+                   "When input points lie off the mesh with normals against it, flip their normals, solve and mesh again, and "
+                   "keep the new mesh when it leaves a quarter fewer such points, no more in all and none farther (beyond the "
+                   "thesis)",
+                   "", &O::refit_off_data),
+      member_field("max_facets", "Refuse to start when the estimated facet count is above this (0: no limit)", "", &O::max_facets),
+      member_field("protection_budget",
+                   "Ball-size queries CGAL's protection may make per polyline point; past them the surface is meshed without "
+                   "it and the report says so (0: no limit)",
+                   "", &O::protection_budget),
+      member_field("seed", "Seed of the refinement's initial points", "", &O::seed),
+  };
+  for (const OptionField<FeatureOptions>& feature : feature_option_fields()) f.push_back(nested_field(feature, &O::features));
+  return f;
+}
+
+}  // namespace
+
+const std::vector<OptionField<ReconstructOptions>>& reconstruct_option_fields() {
+  static const std::vector<OptionField<ReconstructOptions>> fields = reconstruct_fields();
+  return fields;
+}
+
+}  // namespace sharpmesh

@@ -1,0 +1,132 @@
+// The report of the Chapter 7 pipeline (sharpmesh/report.h).
+#include "core/field_json.h"
+#include "sharpmesh/report.h"
+
+namespace sharpmesh {
+namespace detail {
+
+nlohmann::json feature_report(const FeatureResult& result, const FeatureOptions& options, double diagonal);
+
+namespace {
+
+const char* feature_mode_name(FeatureMode mode) {
+  return mode == FeatureMode::Extract ? "extract" : mode == FeatureMode::Given ? "given" : "none";
+}
+
+nlohmann::json protection_report(const ReconstructResult& r, const ReconstructOptions& o) {
+  const ImplicitMeshingResult& m = r.meshing;
+  const double diagonal = r.diagonal;
+  nlohmann::json gaps = nlohmann::json::array();
+  for (const UncoveredGap& g : m.uncovered)
+    gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", length_json(g.gap, diagonal)},
+                    {"refused_by_mesher", g.refused_by_mesher}, {"too_close", g.too_close}});
+  const std::size_t polylines = o.feature_mode == FeatureMode::Given ? o.given_features.size() : r.features.graph.polylines.size();
+  return {{"polylines", polylines},
+          {"protecting_balls", m.protecting_balls},
+          {"enlarged_balls", m.enlarged_balls},
+          {"protection_rounds_exhausted", m.protection_rounds_exhausted},
+          {"protection_stopped", m.protection_stopped},
+          {"protection_queries", m.protection_queries},
+          {"max_gap", length_json(m.max_gap, diagonal)},
+          {"protected_segments", m.protected_segments},
+          {"represented_segments", m.represented_segments},
+          {"represented_fraction", m.protected_segments ? double(m.represented_segments) / m.protected_segments : 1.0},
+          {"uncovered_gaps", gaps.size()},
+          {"uncovered", gaps},
+          {"feature_edge_polylines", m.feature_edges.size()},
+          {"mesher_retries", m.mesher_retries},
+          {"runaway_stopped_at_vertices", m.runaway_stopped_at}};
+}
+
+nlohmann::json counts_report(const ReconstructResult& r) {
+  return {{"input_points", r.input_points},
+          {"duplicate_points", r.duplicate_points},
+          {"points_used", r.used_points},
+          {"poisson_points", r.poisson_points},
+          {"normal_agreement", r.normal_agreement},
+          {"normals_estimated", r.normals_estimated},
+          {"normal_source", r.normal_source},
+          {"input_normal_agreement", r.input_normal_agreement},
+          {"isotropic_cvcm_normals", r.isotropic_cvcm_normals},
+          {"anchored_normals", r.anchored_normals},
+          {"patch_flipped_normals", r.patch_flipped_normals},
+          {"enclosed_flipped_normals", r.enclosed_flipped_normals},
+          {"sharpened_normals", r.sharpened_normals},
+          {"sign_repaired_normals", r.sign_repaired_normals},
+          {"vertices", r.mesh.vertices.size()},
+          {"facets", r.mesh.faces.size()},
+          {"thin_part_vertices", r.thin_part_vertices},
+          {"restricted_to_data", r.restricted},
+          {"data_seeds", r.meshing.data_seeds},
+          {"thin_points", r.thin_points},
+          {"flattened_vertices", r.flattened_vertices},
+          {"unflattened_vertices", r.unflattened_vertices},
+          {"poisson_screening", r.poisson_screening},
+          {"snapped_corners", r.snapped_corners},
+          {"snapped_to_data", r.snapped_to_data},
+          {"snapped_off_data", r.snapped_off_data},
+          {"unsnapped_vertices", r.unsnapped_vertices},
+          {"trimmed_facets", r.trimmed_facets},
+          {"dataless_facets", r.dataless_facets},
+          {"clipped_facets", r.clipped_facets},
+          {"boundary_edges", r.boundary_edges}};
+}
+
+nlohmann::json data_fit_report(const ReconstructResult& r) {
+  const double spacing = r.average_spacing > 0 ? r.average_spacing : 1.0;
+  return {{"off_distance", length_json(r.off_data_distance, r.diagonal)},
+          {"off_distance_avg_spacings", r.off_data_distance / spacing},
+          {"points_off_mesh", r.off_data_points},
+          {"points_off_against_mesh", r.off_data_against},
+          {"vertices_off_data", r.invented_vertices},
+          {"retries", r.data_fit_retries},
+          {"max_distance", length_json(r.max_data_distance, r.diagonal)},
+          {"max_distance_avg_spacings", r.max_data_distance / spacing},
+          {"points_off_first_mesh", r.off_data_points_before_retry},
+          {"retry_flipped_normals", r.off_data_flips}};
+}
+
+}  // namespace
+
+nlohmann::json reconstruct_report(const ReconstructResult& r, const ReconstructOptions& o) {
+  const double diagonal = r.diagonal;
+  nlohmann::json parameters = options_json(o, reconstruct_option_fields());
+  parameters["feature_mode"] = feature_mode_name(o.feature_mode);
+  nlohmann::json warnings = nlohmann::json::array();
+  for (const Warning& w : r.warnings) warnings.push_back({{"code", w.code}, {"message", w.message}});
+  nlohmann::json report = {
+      {"parameters", parameters},
+      {"derived",
+       {{"diagonal", diagonal},
+        {"average_spacing", length_json(r.average_spacing, diagonal)},
+        {"d_prime", length_json(r.d_prime, diagonal)},
+        {"facet_angle_deg", r.criteria.angle},
+        {"max_edge_length", length_json(r.criteria.edge_length, diagonal)},
+        {"max_surface_distance", length_json(r.criteria.distance, diagonal)},
+        {"ball_radius", length_json(o.ball_radius * r.d_prime, diagonal)},
+        {"estimated_facets", r.estimated_facets}}},
+      {"counts", counts_report(r)},
+      {"data_fit", data_fit_report(r)},
+      {"self_intersections",
+       {{"repair", o.repair_self_intersections},
+        {"found_pairs", r.intersection_repair.intersecting_pairs},
+        {"remaining_pairs", r.intersection_repair.remaining_pairs},
+        {"removed_facets", r.intersection_repair.removed_facets},
+        {"added_facets", r.intersection_repair.added_facets},
+        {"rounds", r.intersection_repair.rounds}}},
+      {"refinement",
+       {{"steps", r.meshing.refinement_steps}, {"stalled", r.meshing.refinement_stalled}, {"runaway", r.meshing.refinement_runaway}}},
+      {"warnings", warnings},
+      {"stages", stages_json(r.stages)}};
+  if (o.feature_mode != FeatureMode::None) report["protection"] = protection_report(r, o);
+  if (o.feature_mode == FeatureMode::Extract) report["features"] = feature_report(r.features, o.features, diagonal);
+  return report;
+}
+
+}  // namespace detail
+
+std::string reconstruct_report_json(const ReconstructResult& result, const ReconstructOptions& options) {
+  return detail::reconstruct_report(result, options).dump();
+}
+
+}  // namespace sharpmesh
