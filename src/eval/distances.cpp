@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "eval/triangle_distance.h"
+#include "core/triangle_distance.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 

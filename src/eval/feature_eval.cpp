@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "eval/mesh_graph.h"
-#include "pointset/knn.h"
+#include "core/mesh_graph.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 

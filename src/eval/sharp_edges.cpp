@@ -1,7 +1,7 @@
 // Sharp edges of a reference mesh: the ground truth of feature evaluation.
 #include <cmath>
 
-#include "eval/mesh_graph.h"
+#include "core/mesh_graph.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "eval/triangle_distance.h"
+#include "core/triangle_distance.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
-#include "stereo/ray_caster.h"
+#include "core/ray_caster.h"
 
 namespace sharpmesh {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <set>
 
-#include "eval/mesh_graph.h"
-#include "pointset/cgal_bridge.h"
+#include "core/mesh_graph.h"
+#include "core/cgal_bridge.h"
 #include "sharpmesh/eval.h"
 
 namespace sharpmesh {

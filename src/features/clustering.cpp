@@ -4,9 +4,9 @@
 #include <cmath>
 #include <map>
 
-#include "eval/mesh_graph.h"
+#include "core/mesh_graph.h"
 #include "features/feature_graph_builder.h"
-#include "pointset/knn.h"
+#include "core/knn.h"
 
 namespace sharpmesh::detail {
 

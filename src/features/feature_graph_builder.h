@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/features.h"
 
 namespace sharpmesh::detail {

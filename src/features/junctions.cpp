@@ -16,7 +16,7 @@
 #include <map>
 
 #include "core/fold_backs.h"
-#include "eval/mesh_graph.h"
+#include "core/mesh_graph.h"
 #include "features/feature_graph_builder.h"
 
 namespace sharpmesh::detail {

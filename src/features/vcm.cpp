@@ -17,8 +17,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pointset/cgal_bridge.h"
-#include "pointset/knn.h"
+#include "core/cgal_bridge.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/features.h"
 

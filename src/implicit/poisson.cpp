@@ -13,7 +13,7 @@
 #include <tuple>
 #include <type_traits>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 #include "sharpmesh/implicit.h"
 #include "sharpmesh/pointset.h"
 

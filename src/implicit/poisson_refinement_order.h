@@ -22,7 +22,7 @@
 #include <functional>
 #include <map>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 
 namespace sharpmesh::detail {
 // As Poisson_reconstruction_function<Kernel>::Triangulation.

@@ -9,8 +9,8 @@
 #include <queue>
 #include <unordered_map>
 
-#include "eval/mesh_graph.h"
-#include "pointset/knn.h"
+#include "core/mesh_graph.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
 

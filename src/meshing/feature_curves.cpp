@@ -10,7 +10,7 @@
 #include <set>
 
 #include "core/fold_backs.h"
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
 

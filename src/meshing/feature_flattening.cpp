@@ -12,7 +12,7 @@
 #include <map>
 
 #include "core/plane_fit.h"
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
 

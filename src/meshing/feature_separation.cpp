@@ -11,7 +11,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/meshing.h"
 
 namespace sharpmesh {

@@ -14,7 +14,7 @@
 #include <map>
 #include <tuple>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
 

@@ -28,10 +28,10 @@
 #include <optional>
 #include <unordered_set>
 
-#include "eval/mesh_graph.h"
-#include "pointset/cgal_bridge.h"
+#include "core/mesh_graph.h"
+#include "core/cgal_bridge.h"
 #include "meshing/refinement_retries.h"
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/meshing.h"
 
 namespace sharpmesh {

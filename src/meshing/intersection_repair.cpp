@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "eval/mesh_graph.h"
+#include "core/mesh_graph.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/meshing.h"

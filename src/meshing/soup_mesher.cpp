@@ -22,7 +22,7 @@
 #include <memory>
 #include <unordered_set>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
 

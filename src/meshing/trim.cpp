@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "eval/mesh_graph.h"
-#include "pointset/knn.h"
+#include "core/mesh_graph.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
 

@@ -18,9 +18,9 @@
 #include <CGAL/intersections.h>
 #include <CGAL/squared_distance_3.h>
 
-#include "eval/triangle_distance.h"
-#include "pointset/cgal_bridge.h"
-#include "pointset/knn.h"
+#include "core/triangle_distance.h"
+#include "core/cgal_bridge.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/meshing.h"

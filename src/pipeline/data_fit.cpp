@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pointset/knn.h"
-#include "eval/triangle_distance.h"
+#include "core/knn.h"
+#include "core/triangle_distance.h"
 
 namespace sharpmesh::detail {
 

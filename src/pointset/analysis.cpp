@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
 

@@ -33,7 +33,7 @@
 #include <boost/pending/disjoint_sets.hpp>
 #include <tbb/parallel_for.h>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "pointset/winding_number.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"

@@ -12,8 +12,8 @@
 #include <tuple>
 
 #include "core/plane_fit.h"
-#include "pointset/cgal_bridge.h"
-#include "pointset/knn.h"
+#include "core/cgal_bridge.h"
+#include "core/knn.h"
 #include "sharpmesh/pointset.h"
 
 namespace sharpmesh {

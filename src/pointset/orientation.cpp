@@ -10,7 +10,7 @@
 #include <cmath>
 #include <queue>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
 

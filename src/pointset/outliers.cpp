@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "pointset/cgal_bridge.h"
-#include "pointset/knn.h"
+#include "core/cgal_bridge.h"
+#include "core/knn.h"
 #include "sharpmesh/pointset.h"
 
 namespace sharpmesh {

@@ -7,8 +7,8 @@
 #include <numeric>
 #include <random>
 
-#include "pointset/cgal_bridge.h"
-#include "pointset/knn.h"
+#include "core/cgal_bridge.h"
+#include "core/knn.h"
 #include "sharpmesh/pointset.h"
 
 namespace sharpmesh {

@@ -2,7 +2,7 @@
 // a quadric fitted over its k nearest neighbours.
 #include <CGAL/jet_smooth_point_set.h>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 #include "sharpmesh/pointset.h"
 
 namespace sharpmesh {

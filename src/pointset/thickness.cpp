@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "core/plane_fit.h"
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
 

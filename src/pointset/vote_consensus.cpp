@@ -19,7 +19,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
 

@@ -19,7 +19,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "eval/triangle_distance.h"
+#include "core/triangle_distance.h"
 #include "io/binary.h"
 #include "scene/building.h"
 #include "scene/texture.h"
@@ -28,7 +28,7 @@
 #include "sharpmesh/io.h"
 #include "sharpmesh/scene.h"
 #include "sharpmesh/stereo_io.h"
-#include "stereo/ray_caster.h"
+#include "core/ray_caster.h"
 
 namespace sharpmesh {
 namespace {

@@ -9,10 +9,10 @@
 #include <atomic>
 #include <cmath>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
-#include "stereo/ray_caster.h"
+#include "core/ray_caster.h"
 
 namespace sharpmesh {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "soup/grey_sampling.h"
+#include "core/grey_sampling.h"
 #include "sharpmesh/stereo_reconstruct.h"
 
 namespace sharpmesh {

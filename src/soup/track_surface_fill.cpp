@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "eval/triangle_distance.h"
-#include "pointset/knn.h"
+#include "core/triangle_distance.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
 #include "sharpmesh/reconstruct.h"

@@ -10,7 +10,7 @@
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
-#include "soup/grey_sampling.h"
+#include "core/grey_sampling.h"
 
 namespace sharpmesh {
 namespace {

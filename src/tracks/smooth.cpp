@@ -8,7 +8,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "pointset/knn.h"
+#include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
 

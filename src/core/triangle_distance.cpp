@@ -1,4 +1,4 @@
-#include "eval/triangle_distance.h"
+#include "core/triangle_distance.h"
 
 #include <tbb/parallel_for.h>
 
@@ -8,7 +8,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 
 namespace sharpmesh::detail {
 namespace {

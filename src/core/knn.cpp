@@ -1,4 +1,4 @@
-#include "pointset/knn.h"
+#include "core/knn.h"
 
 #include <CGAL/Fuzzy_sphere.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
@@ -8,7 +8,7 @@
 
 #include <boost/iterator/counting_iterator.hpp>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 
 namespace sharpmesh::detail {
 namespace {

@@ -1,10 +1,10 @@
-#include "stereo/ray_caster.h"
+#include "core/ray_caster.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 
-#include "pointset/cgal_bridge.h"
+#include "core/cgal_bridge.h"
 #include "sharpmesh/errors.h"
 
 namespace sharpmesh::detail {
