@@ -114,31 +114,49 @@ void set_end(TracedPolyline& line, bool back, const Vec3& p) {
   if (back) std::reverse(v.begin(), v.end()), std::reverse(d.begin(), d.end());
 }
 
-}  // namespace
+// Ends whose directions are within 30 degrees of opposite are collinear.
+const double kCosCollinear = std::cos(150.0 * M_PI / 180.0);
 
-FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
-                               const std::function<double(const Vec3&)>& distance_to_data, double max_offset, double max_radius,
-                               double lateral) {
-  const double cos_collinear = std::cos(150.0 * M_PI / 180.0);
+// Two pieces of one edge (or a loop's two ends) keep the thesis's r_junc.
+double pair_radius(const End& a, const End& b) {
+  const bool same_edge = continues(a, b, kCosCollinear) && continues(b, a, kCosCollinear);
+  return same_edge ? std::max(a.r_gap, b.r_gap) : std::max(a.r_junc, b.r_junc);
+}
+
+std::vector<End> polyline_ends(const std::vector<TracedPolyline>& lines, double factor, double max_radius) {
   std::vector<End> ends;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (lines[i].vertices.size() < 2) continue;
     ends.push_back(make_end(lines[i], i, false, factor));
     ends.push_back(make_end(lines[i], i, true, factor));
   }
-  // Two pieces of one edge (or a loop's two ends) keep the thesis's r_junc.
-  auto pair_radius = [&](const End& a, const End& b) {
-    const bool same_edge = continues(a, b, cos_collinear) && continues(b, a, cos_collinear);
-    return same_edge ? std::max(a.r_gap, b.r_gap) : std::max(a.r_junc, b.r_junc);
-  };
   for (End& e : ends) {
     e.r_gap = e.r_junc;
     if (max_radius > 0) e.r_junc = std::min(e.r_junc, max_radius);
   }
-  // Group ends within r_junc of each other; the two ends of one polyline are
-  // only grouped when the polyline is long enough to be a loop.
-  // Closest pairs first; two groups merge only when all their ends still
-  // meet at one point.
+  return ends;
+}
+
+// Whether the two ends of one polyline, `d` apart, close it into a loop.
+// 4 r_junc (20 segments): spool.off's rim circles (45 points, ends 0.002
+// apart) stayed open at 10 r_junc, and the two touching end balls shrank the
+// whole protection to 3,400 tiny balls. Shorter polylines close too when
+// their ends all but touch (within two segments, a tenth of the length):
+// anchor 50k's hole rims, 0.36 long with ends 0.0002-0.002 apart, stayed
+// open, their 470 balls each shrank to the 5% floor and 64% of all
+// protected segments were not mesh edges.
+bool closes_loop(const End& a, const End& b, double d, double length) {
+  const double r = pair_radius(a, b);
+  const bool touching = d < std::min(0.4 * r, 0.1 * length);
+  return (length >= 4 * r || touching) && dot(a.outward, b.outward) <= -0.5;
+}
+
+// Groups of ends within r_junc of each other, closest pairs first; two
+// groups merge only when all their ends still meet at one point. The two
+// ends of one polyline are only grouped when it closes a loop. Each group
+// is listed by its root.
+std::map<std::size_t, std::vector<std::size_t>> group_ends(const std::vector<End>& ends, const std::vector<TracedPolyline>& lines,
+                                                           double lateral) {
   struct Pair { double d; std::size_t a, b; };
   std::vector<Pair> pairs;
   for (std::size_t a = 0; a < ends.size(); ++a)
@@ -153,21 +171,7 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
   for (const Pair& pair : pairs) {
     const std::size_t a = pair.a, b = pair.b, ga = groups.find(a), gb = groups.find(b);
     if (ga == gb) continue;
-    if (ends[a].polyline == ends[b].polyline) {
-      // A loop closes only when the polyline is long and its ends face each
-      // other. 4 r_junc (20 segments): spool.off's rim circles (45 points,
-      // ends 0.002 apart) stayed open at 10 r_junc, and the two touching end
-      // balls shrank the whole protection to 3,400 tiny balls. Shorter
-      // polylines close too when their ends all but touch (within two
-      // segments, a tenth of the length): anchor 50k's hole rims, 0.36 long
-      // with ends 0.0002-0.002 apart, stayed open, their 470 balls each
-      // shrank to the 5% floor and 64% of all protected segments were not
-      // mesh edges.
-      const double r = pair_radius(ends[a], ends[b]);
-      const double length = lines[ends[a].polyline].length();
-      const bool touching = pair.d < std::min(0.4 * r, 0.1 * length);
-      if ((length < 4 * r && !touching) || dot(ends[a].outward, ends[b].outward) > -0.5) continue;
-    }
+    if (ends[a].polyline == ends[b].polyline && !closes_loop(ends[a], ends[b], pair.d, lines[ends[a].polyline].length())) continue;
     std::vector<const End*> merged;
     double r = 0;
     for (std::size_t g : {ga, gb})
@@ -187,11 +191,22 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
   }
   std::map<std::size_t, std::vector<std::size_t>> members;
   for (std::size_t a = 0; a < ends.size(); ++a) members[groups.find(a)].push_back(a);
+  return members;
+}
 
-  FeatureGraph graph;
-  struct Node { Vec3 position; double radius; std::vector<std::size_t> ends; };
+struct Node {
+  Vec3 position;
+  double radius;
+  std::vector<std::size_t> ends;  ///< indices into the ends; SIZE_MAX for the two sides of a split polyline
+};
+
+// One node per group: a closed loop (no node), a junction the ends move to,
+// or, where the end lines meet off the surface, one dart per end.
+std::vector<Node> place_junctions(const std::map<std::size_t, std::vector<std::size_t>>& members, const std::vector<End>& ends,
+                                  std::vector<TracedPolyline>& lines, const std::function<double(const Vec3&)>& distance_to_data,
+                                  double max_offset) {
   std::vector<Node> nodes;
-  for (auto& [root, list] : members) {
+  for (const auto& [root, list] : members) {
     std::vector<End> group;
     double radius = 0;
     for (std::size_t a : list) {
@@ -222,10 +237,13 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
     for (const End& e : group) set_end(lines[e.polyline], e.back, p);
     nodes.push_back({p, radius, list});
   }
+  return nodes;
+}
 
-  // A dart pointing at a junction on its own line within the uncapped
-  // r_junc ends there: the rest of its edge was not traced (cube-meshed
-  // 50k: 9 spacings missing before a corner).
+// A dart pointing at a junction on its own line within the uncapped r_junc
+// ends there: the rest of its edge was not traced (cube-meshed 50k: 9
+// spacings missing before a corner).
+void attach_darts(std::vector<Node>& nodes, const std::vector<End>& ends, std::vector<TracedPolyline>& lines) {
   for (Node& dart : nodes) {
     if (dart.ends.size() != 1) continue;
     const End& e = ends[dart.ends[0]];
@@ -234,7 +252,7 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
     for (Node& node : nodes) {
       if (node.ends.size() < 2) continue;
       const double d = distance(e.position, node.position);
-      if (d < best_d && continues(e, {0, false, node.position, -1.0 * e.outward, 0, 0}, cos_collinear)) {
+      if (d < best_d && continues(e, {0, false, node.position, -1.0 * e.outward, 0, 0}, kCosCollinear)) {
         best_d = d;
         best = &node;
       }
@@ -244,14 +262,17 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
     best->ends.push_back(dart.ends[0]);
     dart.ends.clear();
   }
+}
 
-  // Join the two pieces meeting at a node of degree 2 when they are collinear
-  // (one sharp edge detected in two clusters): no false cusp.
+// Joins the two pieces meeting at a node of degree 2 when they are collinear
+// (one sharp edge detected in two clusters): no false cusp. Returns the
+// pieces joined into another.
+std::vector<bool> join_collinear_pieces(std::vector<Node>& nodes, std::vector<End>& ends, std::vector<TracedPolyline>& lines) {
   std::vector<bool> dead(lines.size(), false);
   for (Node& node : nodes) {
     if (node.ends.size() != 2) continue;
     const End &a = ends[node.ends[0]], &b = ends[node.ends[1]];
-    if (dot(a.outward, b.outward) > cos_collinear) continue;
+    if (dot(a.outward, b.outward) > kCosCollinear) continue;
     if (a.polyline == b.polyline) {
       // A loop traced in pieces, now joined at its other gaps: it closes here.
       // (It used to be left with both ends on this node and dropped as a stub:
@@ -281,16 +302,12 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
     for (End& e : ends)  // ends of the removed piece now belong to the merged polyline
       if (e.polyline == removed) e.polyline = into;
   }
+  return dead;
+}
 
-  // A piece whose two ends were snapped to the same junction (grouped through
-  // other ends) is a stub inside the junction's ball, not an edge.
-  std::vector<TracedPolyline> kept;
-  for (std::size_t i = 0; i < lines.size(); ++i)
-    if (!dead[i] && lines[i].vertices.size() >= 2 && (lines[i].closed || lines[i].vertices.front() != lines[i].vertices.back()))
-      kept.push_back(std::move(lines[i]));
-
-  // Split polylines that pass through a junction or dart (T-junctions): an
-  // interior vertex within the node's radius becomes the node.
+// Splits the polylines that pass through a junction or dart (T-junctions):
+// an interior vertex within the node's radius / 3 becomes the node.
+void split_at_nodes(std::vector<Node>& nodes, std::vector<TracedPolyline>& kept) {
   for (Node& node : nodes) {
     if (node.ends.empty()) continue;
     for (std::size_t li = 0; li < kept.size(); ++li) {
@@ -319,16 +336,17 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
         tail.directions.insert(tail.directions.end(), line.directions.begin() + 1, line.directions.end());
         tail.closed = false;
         line = std::move(tail);
-        node.ends.push_back(SIZE_MAX);
-        node.ends.push_back(SIZE_MAX);
       } else {
         kept.push_back(std::move(tail));
-        node.ends.push_back(SIZE_MAX);
-        node.ends.push_back(SIZE_MAX);
       }
+      node.ends.push_back(SIZE_MAX);
+      node.ends.push_back(SIZE_MAX);
     }
   }
+}
 
+FeatureGraph make_graph(const std::vector<TracedPolyline>& kept, const std::vector<Node>& nodes) {
+  FeatureGraph graph;
   for (const TracedPolyline& line : kept) {
     if (!(line.length() > 0)) continue;  // splits and closings can leave empty pieces
     graph.polylines.push_back(line.vertices);
@@ -343,6 +361,26 @@ FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
     graph.junctions.push_back(j);
   }
   return graph;
+}
+
+}  // namespace
+
+FeatureGraph connect_polylines(std::vector<TracedPolyline> lines, double factor,
+                               const std::function<double(const Vec3&)>& distance_to_data, double max_offset, double max_radius,
+                               double lateral) {
+  std::vector<End> ends = polyline_ends(lines, factor, max_radius);
+  const auto members = group_ends(ends, lines, lateral);
+  std::vector<Node> nodes = place_junctions(members, ends, lines, distance_to_data, max_offset);
+  attach_darts(nodes, ends, lines);
+  const std::vector<bool> dead = join_collinear_pieces(nodes, ends, lines);
+  // A piece whose two ends were snapped to the same junction (grouped through
+  // other ends) is a stub inside the junction's ball, not an edge.
+  std::vector<TracedPolyline> kept;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (!dead[i] && lines[i].vertices.size() >= 2 && (lines[i].closed || lines[i].vertices.front() != lines[i].vertices.back()))
+      kept.push_back(std::move(lines[i]));
+  split_at_nodes(nodes, kept);
+  return make_graph(kept, nodes);
 }
 
 }  // namespace sharpmesh::detail
