@@ -2,7 +2,9 @@
 # above it (docs/architecture.md, "Layers"): the library's folders are layers,
 # lowest first, and a folder may include headers of its own layer and the
 # layers below. The public headers (include/sharpmesh) are the library's
-# interface and are not checked here.
+# interface and are not checked here. It also fails on a raw
+# tbb::parallel_for outside core/parallel.h: every parallel loop goes through
+# the library's own, which the thread limit and progress rely on.
 #
 #   cmake -DSOURCE_DIR=src -DLAYERS=core,io,... [-DSTAMP=file] -P check_layers.cmake
 if(NOT SOURCE_DIR OR NOT LAYERS)
@@ -20,6 +22,12 @@ foreach(file IN LISTS files)
   if(own EQUAL -1)
     string(APPEND problems "\n  ${file}: folder '${layer}' is in no layer (add it to SHARPMESH_LAYERS in src/CMakeLists.txt)")
     continue()
+  endif()
+  if(NOT file STREQUAL "core/parallel.h")
+    file(STRINGS "${SOURCE_DIR}/${file}" raw_loops REGEX "tbb::parallel_for[ \t]*\\(")
+    if(raw_loops)
+      string(APPEND problems "\n  ${file}: calls tbb::parallel_for (use detail::parallel_for or parallel_chunks, core/parallel.h)")
+    endif()
   endif()
   file(STRINGS "${SOURCE_DIR}/${file}" includes REGEX "^[ \t]*#[ \t]*include[ \t]+\"[a-z_0-9]+/")
   foreach(line IN LISTS includes)

@@ -1,7 +1,7 @@
 #!/bin/bash
 # The layer check (cmake/check_layers.cmake) passes on src/ and stops a
 # back-edge: a copy of src/ where features/ includes an eval/ header fails,
-# naming the file.
+# naming the file; so does a copy with a raw tbb::parallel_for.
 set -euo pipefail
 root=$1
 layers=$2
@@ -17,3 +17,10 @@ if cmake -DSOURCE_DIR="$work/src" "-DLAYERS=$layers" -P "$root/cmake/check_layer
   exit 1
 fi
 grep -q "features/back_edge.cpp: includes eval/" "$work/err" || { cat "$work/err" >&2; exit 1; }
+rm "$work/src/features/back_edge.cpp"
+printf 'void f() { tbb::parallel_for(0, 4, [](int) {}); }\n' > "$work/src/pointset/raw_loop.cpp"
+if cmake -DSOURCE_DIR="$work/src" "-DLAYERS=$layers" -P "$root/cmake/check_layers.cmake" 2> "$work/err"; then
+  echo "a raw tbb::parallel_for in pointset/ passed the layer check" >&2
+  exit 1
+fi
+grep -q "pointset/raw_loop.cpp: calls tbb::parallel_for" "$work/err" || { cat "$work/err" >&2; exit 1; }

@@ -28,7 +28,7 @@ Command add_reconstruct(CLI::App& app) {
   sub->add_option("--features", o->features_file, "Protect these polylines (CGAL text format) instead of extracting features")
       ->excludes(no_features);
   sub->add_option("--sharp-edges", o->sharp_edges_out, "Write the mesh edges that represent the protected features (polylines)");
-  add_option_fields(*sub, o->reconstruct, reconstruct_option_fields());
+  add_option_fields(*sub, o->reconstruct, reconstruct_option_fields(), {"threads"});
   sub->add_option("--time-limit", o->time_limit,
                   "Seconds the whole reconstruction may take; past them it stops with exit status 1 and writes nothing (0: no limit)")
       ->check(CLI::NonNegativeNumber)
@@ -43,6 +43,7 @@ Command add_reconstruct(CLI::App& app) {
     check_output(o->sharp_edges_out, "sharp edges");
     check_output(common->report, "report");
     ReconstructOptions& options = o->reconstruct;
+    options.threads = common->threads;
     options.feature_mode = o->no_features ? FeatureMode::None : o->features_file.empty() ? FeatureMode::Extract : FeatureMode::Given;
     const auto start = std::chrono::steady_clock::now();
     std::vector<StageTiming> io_stages;

@@ -53,7 +53,7 @@ Command add_stereo(CLI::App& app) {
   sub->add_option("--tracks", o->tracks, "Tracks instead of the model's: a tracks PLY (x y z, views) or COLMAP's fused.ply (+ .vis)");
   sub->add_option("--soup", o->soup_out, "Write the filtered triangle soup (PLY/OFF/OBJ)");
   sub->add_option("--tracks-out", o->tracks_out, "Write the pre-processed tracks (PLY with their views)");
-  add_option_fields(*sub, o->stereo, stereo_option_fields());
+  add_option_fields(*sub, o->stereo, stereo_option_fields(), {"threads"});
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
   common->add_to(*sub);
   auto run = [o, common] {
@@ -61,6 +61,7 @@ Command add_stereo(CLI::App& app) {
     check_output(o->soup_out, "soup");
     check_output(o->tracks_out, "tracks");
     check_output(common->report, "report");
+    o->stereo.threads = common->threads;
     o->stereo.check();
     const auto start = std::chrono::steady_clock::now();
     std::vector<StageTiming> io_stages;

@@ -20,9 +20,14 @@ inline std::string flag_name(const std::string& field_name) {
   return flag;
 }
 
+/// Adds a flag per field, except the fields named in `common`: those are
+/// flags every command has (cli.h's CommonOptions), copied into the options
+/// by the command itself.
 template <class Options>
-void add_option_fields(CLI::App& app, Options& options, const std::vector<OptionField<Options>>& fields) {
+void add_option_fields(CLI::App& app, Options& options, const std::vector<OptionField<Options>>& fields,
+                       const std::vector<std::string>& common = {}) {
   for (const OptionField<Options>& field : fields) {
+    if (std::find(common.begin(), common.end(), field.name) != common.end()) continue;
     const FieldValue initial = field.get(options);
     const std::string flag = "--" + flag_name(field.name);
     const std::string help = field.help + (field.unit.empty() ? "" : " [" + field.unit + "]");

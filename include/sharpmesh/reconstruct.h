@@ -121,6 +121,9 @@ struct ReconstructOptions {
   /// stops only a protection that walks a curve for ever.
   double protection_budget = 1000;
   std::uint32_t seed = 0;
+  /// Worker threads of this call's parallel loops (0: every core). The
+  /// limit holds for this call only, not for the process.
+  int threads = 0;
   void check(std::size_t n) const;
 };
 

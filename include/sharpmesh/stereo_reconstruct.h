@@ -311,6 +311,9 @@ struct StereoReconstructionOptions {
   /// Beyond the thesis (its remedy in 6.6): holes of the mesh whose boundary
   /// is shorter than this are filled, fraction of the half diagonal; 0: off.
   double max_hole = 0.0;
+  /// Worker threads of this call's parallel loops (0: every core). The
+  /// limit holds for this call only, not for the process.
+  int threads = 0;
   void check() const;
 };
 

@@ -1,6 +1,5 @@
 #include "core/triangle_distance.h"
 
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 
@@ -9,6 +8,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 
 #include "core/cgal_bridge.h"
+#include "core/parallel.h"
 
 namespace sharpmesh::detail {
 namespace {
@@ -49,8 +49,8 @@ Vec3 TriangleDistance::closest_normal(const Vec3& q) const {
 
 std::vector<double> TriangleDistance::distances(const std::vector<Vec3>& queries) const {
   std::vector<double> d(queries.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) d[i] = std::sqrt(squared_distance(queries[i]));
+  detail::parallel_chunks(queries.size(), 2048, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i != end; ++i) d[i] = std::sqrt(squared_distance(queries[i]));
   });
   return d;
 }

@@ -1,6 +1,5 @@
 // Accuracy and completeness of a multi-view reconstruction against a
 // reference surface (Strecha et al. 2008; thesis 6.5, Fig. 6.8).
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +8,7 @@
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 #include "core/ray_caster.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -47,8 +47,8 @@ StereoEvaluation evaluate_stereo(const SurfaceMesh& mesh, const SurfaceMesh& ref
   const std::vector<Vec3> reference_samples = sample_mesh(reference, sampling).points;
   const detail::RayCaster reference_rays(reference);
   std::vector<char> visible(reference_samples.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, reference_samples.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
+  detail::parallel_chunks(reference_samples.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i != end; ++i)
       for (const Camera& c : cameras) {
         Vec2 p;
         if (c.project(reference_samples[i], p) && c.in_image(p) && !reference_rays.occluded(c.center(), reference_samples[i])) {

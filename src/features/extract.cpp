@@ -2,7 +2,6 @@
 // (2) clustering, (3) polylines and junctions.
 #include <Eigen/Eigenvalues>
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "features/feature_graph_builder.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 
@@ -76,7 +76,7 @@ double estimate_noise(const std::vector<Vec3>& points, const detail::KnnIndex& i
   const std::size_t samples = std::min<std::size_t>(points.size(), 2000);
   std::vector<double> residual(samples, 0.0);
   const std::size_t stride = points.size() / samples;
-  tbb::parallel_for(std::size_t(0), samples, [&](std::size_t s) {
+  detail::parallel_for(samples, [&](std::size_t s) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     if (k > 0) index.nearest(points[s * stride], k, ids, d2);
@@ -99,7 +99,7 @@ double estimate_shifted_noise(const std::vector<Vec3>& points, const detail::Knn
   if (points.size() < static_cast<std::size_t>(kPlanePoints)) return std::numeric_limits<double>::infinity();
   std::vector<double> residual(samples, 0.0);
   const std::size_t stride = points.size() / samples;
-  tbb::parallel_for(std::size_t(0), samples, [&](std::size_t s) {
+  detail::parallel_for(samples, [&](std::size_t s) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     index.nearest(points[s * stride], kCandidates, ids, d2);
@@ -223,7 +223,7 @@ void trace_feature_graph(const std::vector<detail::EdgeCluster>& clusters, const
   // (or within 25 degrees of it, seen from the end).
   const double junction_lateral = result.average_spacing + 2 * result.noise_estimate;
   std::vector<std::vector<detail::TracedPolyline>> per_cluster(clusters.size());
-  tbb::parallel_for(std::size_t(0), clusters.size(), [&](std::size_t c) {
+  detail::parallel_for(clusters.size(), [&](std::size_t c) {
     per_cluster[c] = detail::trace_polylines(clusters[c], edge_points, edge_directions, options.successor_k, step, lateral,
                                              options.min_cluster_size);
   });

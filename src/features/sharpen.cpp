@@ -27,12 +27,12 @@
 // points lie on one edge's two faces.
 #include <Eigen/Eigenvalues>
 
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 
 #include "core/plane_fit.h"
 #include "features/feature_graph_builder.h"
+#include "core/parallel.h"
 
 namespace sharpmesh::detail {
 namespace {
@@ -189,14 +189,14 @@ std::size_t sharpen_edge_points(const PointSet& cloud, const std::vector<PointFe
   std::vector<char> keep(n, 0);
   const double sin_min = std::sin(o.plane_min_angle_deg * M_PI / 180.0);
   const double sin_corner = std::sin(o.corner_min_angle_deg * M_PI / 180.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(n, 64, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids, nearest;
     std::vector<double> d2;
     auto data_offset = [&](const Eigen::Vector3d& x) {
       index.nearest({x(0), x(1), x(2)}, 1, nearest, d2);
       return d2.empty() ? INFINITY : std::sqrt(d2[0]);
     };
-    for (std::size_t e = range.begin(); e != range.end(); ++e) {
+    for (std::size_t e = begin; e != end; ++e) {
       const Vec3& p = cloud.points[edge_ids[e]];
       const Eigen::Vector3d q = eig(p);
       EdgeFit fit, primary;

@@ -12,7 +12,6 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +20,7 @@
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/features.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -104,12 +104,12 @@ std::vector<Matrix3> voronoi_covariance(const std::vector<Vec3>& points, double 
   }
 
   const double R2 = R * R;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 512), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(points.size(), 512, [&](std::size_t begin, std::size_t end) {
     std::vector<Delaunay::Edge> edges;
     std::vector<Delaunay::Cell_handle> cells;
     std::vector<Delaunay::Vertex_handle> seen;
     std::vector<Vec3> polygon;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+    for (std::size_t i = begin; i != end; ++i) {
       const auto v = vertex_of[i];
       if (v == Delaunay::Vertex_handle()) continue;
       const Vec3 p = detail::from_cgal(v->point());
@@ -160,9 +160,9 @@ std::vector<Matrix3> convolve_covariance(const std::vector<Vec3>& points, const 
   report_progress(progress, "convolution", 0.0);
   const detail::KnnIndex index(points);
   std::vector<Matrix3> out(points.size(), Matrix3{});
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 512), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(points.size(), 512, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+    for (std::size_t i = begin; i != end; ++i) {
       index.within(points[i], r, ids);
       std::sort(ids.begin(), ids.end());  // fixed summation order: thread-count independent
       Matrix3& m = out[i];

@@ -5,7 +5,6 @@
 // 7.5, seen from the other side). Each such vertex is projected onto the
 // plane fitted to the input points around it whose normals agree with the
 // mesh there, i.e. onto the face it belongs to.
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +14,7 @@
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 
@@ -52,7 +52,7 @@ std::size_t flatten_next_to_features(SurfaceMesh& mesh, const std::vector<Polyli
   const double cos_max = std::cos(options.max_angle_deg * M_PI / 180.0);
   std::vector<Vec3> target(moving.size());
   std::vector<char> moved(moving.size(), 0);
-  tbb::parallel_for(std::size_t(0), moving.size(), [&](std::size_t m) {
+  detail::parallel_for(moving.size(), [&](std::size_t m) {
     const Vec3& p = mesh.vertices[moving[m]];
     const Vec3 n = (1.0 / norm(vertex_normal[moving[m]])) * vertex_normal[moving[m]];
     std::vector<std::uint32_t> ids;

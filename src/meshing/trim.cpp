@@ -3,7 +3,6 @@
 // closing sheet. Facets far from every input point are removed, or, to fill
 // gaps in the data without extending its outer edge, those the data neither
 // comes near nor surrounds.
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +11,7 @@
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/meshing.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 
@@ -21,7 +21,7 @@ namespace {
 template <class Keep>
 std::size_t remove_facets_unless(SurfaceMesh& mesh, const Keep& keep_facet) {
   std::vector<char> keep(mesh.faces.size(), 1);
-  tbb::parallel_for(std::size_t(0), mesh.faces.size(), [&](std::size_t f) {
+  detail::parallel_for(mesh.faces.size(), [&](std::size_t f) {
     const Triangle& t = mesh.faces[f];
     keep[f] = keep_facet(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
   });
@@ -113,7 +113,7 @@ std::size_t remove_components_off_points(SurfaceMesh& mesh, const std::vector<Ve
   auto root = [&](std::uint32_t v) { return static_cast<std::uint32_t>(components.find(v)); };
   const detail::KnnIndex index(points);
   std::vector<double> distance(mesh.vertices.size(), 0.0);
-  tbb::parallel_for(std::size_t(0), mesh.vertices.size(), [&](std::size_t v) {
+  detail::parallel_for(mesh.vertices.size(), [&](std::size_t v) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     index.nearest(mesh.vertices[v], 1, ids, d2);

@@ -117,6 +117,7 @@ std::vector<OptionField<O>> reconstruct_fields() {
                    "it and the report says so (0: no limit)",
                    "", &O::protection_budget),
       member_field("seed", "Seed of the refinement's initial points", "", &O::seed),
+      member_field("threads", "Worker threads of this reconstruction (0: every core)", "", &O::threads),
   };
   for (const OptionField<FeatureOptions>& feature : feature_option_fields()) f.push_back(nested_field(feature, &O::features));
   return f;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/parallel.h"
 #include "core/recentering.h"
 #include "pipeline/stages.h"
 #include "sharpmesh/errors.h"
@@ -14,10 +15,12 @@ namespace sharpmesh {
 namespace {
 
 ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress);
+ReconstructResult reconstruct_world(const PointSet& input, const ReconstructOptions& options, const Progress& progress);
 
 }  // namespace
 
 void ReconstructOptions::check(std::size_t n) const {
+  if (threads < 0) throw InvalidArgument("threads must be 0 (every core) or a positive count (got " + format_number(threads) + ")");
   if (!(protection_budget >= 0) || !std::isfinite(protection_budget))
     throw InvalidArgument("protection budget must be a non-negative number of queries per polyline point (got " +
                           format_number(protection_budget) + ")");
@@ -53,6 +56,13 @@ double estimated_area_from_spacing(std::size_t n, double average_spacing) {
 }
 
 ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
+  return detail::run_with_threads(options.threads, [&] { return reconstruct_world(input, options, progress); });
+}
+
+namespace {
+
+/// Recentres the input, runs the stages and brings the results back.
+ReconstructResult reconstruct_world(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
   check_point_set(input, 10, "reconstruction");
   options.check(input.size());
   const detail::Recentering frame(input.points);
@@ -93,8 +103,6 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
   result.warnings = detail::reconstruct_warnings(result, options);
   return result;
 }
-
-namespace {
 
 /// The stages of stages.h in order, on a recentred input.
 ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOptions& options, const Progress& progress) {

@@ -1,10 +1,10 @@
 // The Chapter 6 pipeline: tracks (6.3.1) -> contour-respecting depth maps
 // and a triangle soup (6.3.2) -> filtered soup (6.3.2) -> Delaunay
 // refinement with the soup as the oracle (6.3.3) -> hole filling (6.6).
-#include <tbb/parallel_for.h>
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 
@@ -15,11 +15,14 @@ void StereoReconstructionOptions::check() const {
   filters.check();
   fill.check();
   meshing.check();
+  if (threads < 0) throw InvalidArgument("threads must be 0 (every core) or a positive count (got " + format_number(threads) + ")");
   if (!(max_hole >= 0 && max_hole <= 10)) throw InvalidArgument("the largest hole to fill must be in [0, 10] half diagonals, got " + format_number(max_hole));
 }
 
-StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<GreyImage>& images,
-                                        const StereoReconstructionOptions& options, const Progress& progress) {
+namespace {
+
+StereoReconstruction run_stereo(StereoModel& model, const std::vector<GreyImage>& images, const StereoReconstructionOptions& options,
+                                const Progress& progress) {
   options.check();
   model.validate("the stereo model");
   if (model.cameras.size() < 2) throw InvalidInput("stereo reconstruction needs at least 2 cameras, the model has " + format_number(model.cameras.size()));
@@ -42,7 +45,7 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
     std::vector<DepthMap> maps(model.cameras.size());
     report_progress(progress, "depth maps", 0.0);
     // One image per task: each builds its own triangulations.
-    tbb::parallel_for(std::size_t(0), model.cameras.size(), [&](std::size_t v) {
+    detail::parallel_for(model.cameras.size(), [&](std::size_t v) {
       const std::vector<std::uint8_t> contours =
           detect_contours(images[v].pixels, images[v].width, images[v].height, options.depth_maps);
       maps[v] = build_depth_map(model, static_cast<std::uint32_t>(v), contours, options.depth_maps);
@@ -82,6 +85,13 @@ StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<Gr
     result.holes = fill_holes(result.meshing.mesh, holes, progress);
   }
   return result;
+}
+
+}  // namespace
+
+StereoReconstruction reconstruct_stereo(StereoModel& model, const std::vector<GreyImage>& images,
+                                        const StereoReconstructionOptions& options, const Progress& progress) {
+  return detail::run_with_threads(options.threads, [&] { return run_stereo(model, images, options, progress); });
 }
 
 }  // namespace sharpmesh

@@ -94,6 +94,7 @@ std::vector<OptionField<O>> stereo_fields() {
                                      "fraction of the soup's half diagonal", &O::max_hole);
   hole.group = "Meshing (thesis 6.3.3)";
   f.push_back(hole);
+  f.push_back(member_field("threads", "Worker threads of this reconstruction (0: every core)", "", &O::threads));
   return f;
 }
 

@@ -1,11 +1,11 @@
 // Point-set checks and average spacing (thesis App. A.3, 7.3.2).
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 
@@ -39,10 +39,10 @@ namespace detail {
 
 std::vector<double> local_spacings(const std::vector<Vec3>& points, const KnnIndex& index, int k) {
   std::vector<double> mean(points.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+  detail::parallel_chunks(points.size(), 2048, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+    for (std::size_t i = begin; i != end; ++i) {
       index.nearest(points[i], k + 1, ids, d2);
       double sum = 0;
       int count = 0;

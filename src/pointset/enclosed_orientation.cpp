@@ -31,12 +31,12 @@
 #include <cmath>
 
 #include <boost/pending/disjoint_sets.hpp>
-#include <tbb/parallel_for.h>
 
 #include "core/knn.h"
 #include "pointset/winding_number.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -66,7 +66,7 @@ std::size_t repair_enclosed_normals(PointSet& points, double spacing, int k) {
   const int count = std::max(k, kAreaNeighbours) + 1;
   std::vector<std::vector<std::uint32_t>> neighbours(n);
   std::vector<double> area(n);
-  tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(n), [&](std::uint32_t i) {
+  detail::parallel_for(n, [&](std::uint32_t i) {
     std::vector<double> squared;
     index.nearest(p[i], count, neighbours[i], squared);
     const std::size_t last = std::min<std::size_t>(kAreaNeighbours, squared.size() - 1);
@@ -79,7 +79,7 @@ std::size_t repair_enclosed_normals(PointSet& points, double spacing, int k) {
   for (int round = 0; round < kRounds; ++round) {
     const detail::WindingNumber winding(p, normal, area, softening);
     std::vector<double> outer(n);
-    tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(n),
+    detail::parallel_for(n,
                       [&](std::uint32_t i) { outer[i] = winding.at(p[i] + offset * normal[i]); });
     // Groups of suspects with normals on the same side.
     boost::disjoint_sets_with_storage<> sets(n);
@@ -102,7 +102,7 @@ std::size_t repair_enclosed_normals(PointSet& points, double spacing, int k) {
     if (groups.empty()) break;
 
     std::vector<char> flip(groups.size(), 0);
-    tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
+    detail::parallel_for(groups.size(), [&](std::size_t g) {
       const std::vector<std::uint32_t>& group = groups[g];  // in increasing order
       std::vector<std::uint32_t> around, found;
       for (std::uint32_t i : group) {

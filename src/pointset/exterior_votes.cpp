@@ -18,8 +18,6 @@
 // one (the crossing-parity rule of inside/outside tests, e.g. Jacobson et al.
 // 2013, "Robust inside-outside segmentation using generalized winding
 // numbers", applied to the samples instead of facets).
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -30,6 +28,7 @@
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -143,7 +142,7 @@ std::vector<signed char> exterior_side_votes(const PointSet& cloud, double cell,
   if (cloud.empty()) return votes;
   const OccupancyGrid grid(cloud.points, bounded_cell(cloud.points, cell));
   if (grid.enclosed_cells() == 0) return votes;
-  tbb::parallel_for(std::size_t(0), cloud.size(), [&](std::size_t i) {
+  detail::parallel_for(cloud.size(), [&](std::size_t i) {
     const double length = norm(cloud.normals[i]);
     if (!(length > 0)) return;
     const Vec3 n = (1.0 / length) * cloud.normals[i];
@@ -261,9 +260,9 @@ std::vector<signed char> sheet_parity_votes(const PointSet& cloud, double spacin
   const double gap = spacing + 3 * noise;
   // A sheet crossed at up to about 45 degrees spans twice the radius.
   const double max_extent = 2 * radius + 6 * noise;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(cloud.size(), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<double> offsets;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+    for (std::size_t i = begin; i != end; ++i) {
       const double length = norm(cloud.normals[i]);
       if (!(length > 0)) continue;
       const Vec3 n = (1.0 / length) * cloud.normals[i];

@@ -6,7 +6,6 @@
 #include <CGAL/mst_orient_normals.h>
 #include <CGAL/pca_estimate_normals.h>
 
-#include <tbb/parallel_for.h>
 
 #include <limits>
 #include <tuple>
@@ -15,6 +14,7 @@
 #include "core/cgal_bridge.h"
 #include "core/knn.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -83,12 +83,12 @@ void estimate_normals_at(PointSet& points, const std::vector<std::uint32_t>& ind
   if (!prepare_normals_at(points, indices)) return;
   using Monge = CGAL::Monge_via_jet_fitting<detail::Kernel, CGAL::Simple_cartesian<double>, CGAL::Eigen_svd>;
   const detail::KnnIndex index(points.points);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(indices.size(), 256, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     std::vector<detail::Point3> local;
     std::vector<Eigen::Vector3d> plane_points;
-    for (std::size_t m = range.begin(); m != range.end(); ++m) {
+    for (std::size_t m = begin; m != end; ++m) {
       const std::uint32_t i = indices[m];
       index.nearest(points.points[i], options.k + 1, ids, d2);
       Vec3 n{0, 0, 0};
@@ -123,10 +123,10 @@ void estimate_shifted_normals_at(PointSet& points, const std::vector<std::uint32
   const std::size_t kc = static_cast<std::size_t>(options.candidates);
   // The candidates of every point, then one plane per candidate (each fitted once).
   std::vector<std::uint32_t> candidates(indices.size() * kc);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(indices.size(), 256, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
-    for (std::size_t m = range.begin(); m != range.end(); ++m) {
+    for (std::size_t m = begin; m != end; ++m) {
       index.nearest(points.points[indices[m]], options.candidates, ids, d2);
       std::copy(ids.begin(), ids.end(), candidates.begin() + static_cast<std::ptrdiff_t>(m * kc));
     }
@@ -138,11 +138,11 @@ void estimate_shifted_normals_at(PointSet& points, const std::vector<std::uint32
     if (needed[j]) fitted.push_back(static_cast<std::uint32_t>(j));
   std::vector<detail::Plane> planes(points.size());
   std::vector<double> residual(points.size(), std::numeric_limits<double>::infinity());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fitted.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(fitted.size(), 256, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     std::vector<Eigen::Vector3d> local;
-    for (std::size_t m = range.begin(); m != range.end(); ++m) {
+    for (std::size_t m = begin; m != end; ++m) {
       const std::uint32_t j = fitted[m];
       index.nearest(points.points[j], options.k, ids, d2);
       local.clear();
@@ -151,7 +151,7 @@ void estimate_shifted_normals_at(PointSet& points, const std::vector<std::uint32
       if (detail::fit_plane(local, planes[j], rms)) residual[j] = rms;
     }
   });
-  tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t m) {
+  detail::parallel_for(indices.size(), [&](std::size_t m) {
     const Vec3& p = points.points[indices[m]];
     const Eigen::Vector3d x(p[0], p[1], p[2]);
     double best = std::numeric_limits<double>::infinity();

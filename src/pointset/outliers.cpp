@@ -2,7 +2,6 @@
 // the 3-sigma rule on the average squared kNN distance (Section 6.3.1).
 #include <CGAL/remove_outliers.h>
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +10,7 @@
 #include "core/cgal_bridge.h"
 #include "core/knn.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -64,10 +64,10 @@ std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOut
   report_progress(progress, "3-sigma outlier removal", 0.0);
   const detail::KnnIndex index(points);
   std::vector<double> dk(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(n, 1024, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+    for (std::size_t i = begin; i != end; ++i) {
       index.nearest(points[i], options.k + 1, ids, d2);  // +1: the point itself is its own nearest
       double sum = 0;
       for (std::size_t j = 1; j < d2.size(); ++j) sum += d2[j];
@@ -80,10 +80,10 @@ std::vector<bool> sigma_outliers(const std::vector<Vec3>& points, const SigmaOut
   // stereo study's 200k-track run.
   if (options.relative) {
     std::vector<double> score(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+    detail::parallel_chunks(n, 1024, [&](std::size_t begin, std::size_t end) {
       std::vector<std::uint32_t> ids;
       std::vector<double> d2, around;
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      for (std::size_t i = begin; i != end; ++i) {
         index.nearest(points[i], options.k + 1, ids, d2);
         around.clear();
         for (std::size_t j = 1; j < ids.size(); ++j) around.push_back(dk[ids[j]]);

@@ -32,11 +32,11 @@
 #include <tuple>
 
 #include <boost/pending/disjoint_sets.hpp>
-#include <tbb/parallel_for.h>
 
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -151,7 +151,7 @@ std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uin
 
   // Patches: reliable normals joined along tangent edges of the kNN graph.
   std::vector<std::vector<std::uint32_t>> neighbours(n);
-  tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(n), [&](std::uint32_t i) {
+  detail::parallel_for(n, [&](std::uint32_t i) {
     std::vector<double> squared;
     index.nearest(p[i], k + 1, neighbours[i], squared);
   });
@@ -182,7 +182,7 @@ std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uin
   // from the smaller index when both ends are border points).
   using Vote = std::pair<std::pair<std::uint32_t, std::uint32_t>, double>;
   std::vector<std::vector<Vote>> chord_votes(n);
-  tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(n), [&](std::uint32_t i) {
+  detail::parallel_for(n, [&](std::uint32_t i) {
     if (!border[i]) return;
     std::vector<std::uint32_t> near;
     index.within(p[i], kChordSpacings * spacing, near);

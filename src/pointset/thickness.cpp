@@ -4,7 +4,6 @@
 // apart (a Voronoi edge crosses both with no sign change), so the mesher
 // needs denser vertices there (a sizing field driven by the local feature
 // size, the thesis's future work in 8.2).
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 
@@ -38,7 +38,7 @@ std::vector<double> local_thickness(const PointSet& points, double min_thickness
   // reach the far face, and the plate itself read as noise hid every wall.
   const std::size_t samples = std::min<std::size_t>(points.size(), 2000);
   std::vector<double> residual(samples, 0.0);
-  tbb::parallel_for(std::size_t(0), samples, [&](std::size_t s) {
+  detail::parallel_for(samples, [&](std::size_t s) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
     const std::size_t centre = s * (points.size() / samples);
@@ -72,10 +72,10 @@ std::vector<double> local_thickness(const PointSet& points, double min_thickness
   // nothing closer than the best so far. Same points, same result.
   const double t0 = cos_cone * min_thickness;
   const bool along_the_line = t0 > 0 && max_thickness > 8 * t0;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+  detail::parallel_chunks(points.size(), 256, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids, nearest;
     std::vector<double> d2;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+    for (std::size_t i = begin; i != end; ++i) {
       const Vec3& p = points.points[i];
       const Vec3& n = points.normals[i];
       const double nn = norm(n);

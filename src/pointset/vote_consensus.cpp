@@ -12,7 +12,6 @@
 // (every smooth patch of the plain MST taking its majority) decided nothing
 // on thin plates whose two faces one patch joined, and gave a whole face of
 // a ribbed part the wrong sign.
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdint>
@@ -22,6 +21,7 @@
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/pointset.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -42,7 +42,7 @@ std::vector<signed char> neighbour_confirmed_votes(const PointSet& cloud, const 
   const std::vector<Vec3>& normal = cloud.normals;
   const detail::KnnIndex index(p);
   const int neighbours = std::min<int>(k + 1, static_cast<int>(n));
-  tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(n), [&](std::uint32_t i) {
+  detail::parallel_for(n, [&](std::uint32_t i) {
     if (votes[i] == 0) return;
     std::vector<std::uint32_t> near;
     std::vector<double> squared;

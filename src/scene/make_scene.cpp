@@ -4,7 +4,6 @@
 // noisy pixels by minimising the squared distance to the rays (3.2.2), with
 // outliers; (b) fused depth maps (3.2.3) with depth noise growing as depth^2
 // and foreground fattening at depth edges.
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -29,6 +28,7 @@
 #include "sharpmesh/scene.h"
 #include "sharpmesh/stereo_io.h"
 #include "core/ray_caster.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -79,7 +79,8 @@ Rendering render(const Camera& cam, const SceneGeometry& g, const detail::RayCas
   cv::Mat linear(cam.height, cam.width, CV_64FC3);
   const Vec3 origin = cam.center();
   const int ss = o.supersample;
-  tbb::parallel_for(0, cam.height, [&](int y) {
+  detail::parallel_for(static_cast<std::size_t>(cam.height), [&](std::size_t row) {
+    const int y = static_cast<int>(row);
     for (int x = 0; x < cam.width; ++x) {
       Color sum{0, 0, 0};
       for (int sy = 0; sy < ss; ++sy)

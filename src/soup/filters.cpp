@@ -2,8 +2,6 @@
 // space (visibility, up to t3 crossings), every vertex must be seen by a
 // non-grazing line of sight, big triangles must not be anamorphic, and big
 // regular triangles must be photo-consistent.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -13,6 +11,7 @@
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
 #include "core/ray_caster.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 
@@ -40,31 +39,27 @@ SightCrossings count_sight_crossings(const TriangleSoup& soup, const StereoModel
   for (std::uint32_t f = 0; f < soup.faces.size(); ++f)
     for (std::uint32_t v : soup.faces[f])
       if (v < incident.size()) incident[v].push_back(f);
-  const std::size_t n = model.tracks.size();
-  const std::size_t chunk = 8192;
-  for (std::size_t begin = 0; begin < n; begin += chunk) {
-    report_progress(progress, "visibility filter", static_cast<double>(begin) / n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, std::min(n, begin + chunk), 64),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        std::vector<std::uint32_t> faces;
-                        for (std::size_t t = range.begin(); t != range.end(); ++t) {
-                          const Vec3& p = model.tracks[t].position;
-                          for (std::uint32_t v : model.tracks[t].views) {
-                            const Vec3 sight = p - centers[v];
-                            const double length = norm(sight);
-                            if (!(length > margin)) continue;
-                            faces.clear();
-                            caster.crossed_faces(centers[v], centers[v] + ((length - margin) / length) * sight, faces);
-                            for (std::uint32_t f : faces) {
-                              const auto& own = incident[t];
-                              if (std::find(own.begin(), own.end(), f) != own.end()) continue;
-                              result.per_track[t].push_back({v, f});
-                            }
-                          }
-                        }
-                      });
-  }
-  report_progress(progress, "visibility filter", 1.0);
+  detail::parallel_chunks(
+      model.tracks.size(), 64,
+      [&](std::size_t begin, std::size_t end) {
+        std::vector<std::uint32_t> faces;
+        for (std::size_t t = begin; t != end; ++t) {
+          const Vec3& p = model.tracks[t].position;
+          for (std::uint32_t v : model.tracks[t].views) {
+            const Vec3 sight = p - centers[v];
+            const double length = norm(sight);
+            if (!(length > margin)) continue;
+            faces.clear();
+            caster.crossed_faces(centers[v], centers[v] + ((length - margin) / length) * sight, faces);
+            for (std::uint32_t f : faces) {
+              const auto& own = incident[t];
+              if (std::find(own.begin(), own.end(), f) != own.end()) continue;
+              result.per_track[t].push_back({v, f});
+            }
+          }
+        }
+      },
+      progress, "visibility filter", 8192);
   for (const auto& crossings : result.per_track)
     for (const auto& [view, face] : crossings) ++result.per_face[face];
   return result;
@@ -147,8 +142,8 @@ SoupFilterStats filter_soup(TriangleSoup& soup, const StereoModel& model, const 
   const double cos_grazing = std::cos(options.grazing_angle * M_PI / 180.0);
   std::vector<std::uint8_t> verdict(soup.faces.size(), Keep);
   report_progress(progress, "shape filters", 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.faces.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t f = range.begin(); f != range.end(); ++f) {
+  detail::parallel_chunks(soup.faces.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f != end; ++f) {
       const Triangle& t = soup.faces[f];
       const std::array<Vec3, 3> p{soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]};
       const Shape s = shape_of(p[0], p[1], p[2]);
@@ -201,8 +196,8 @@ SoupFilterStats filter_soup(TriangleSoup& soup, const StereoModel& model, const 
   // Photo-consistency (6.3.2) of the big regular triangles left.
   std::atomic<std::size_t> tested{0};
   report_progress(progress, "photo-consistency filter", 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.faces.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t f = range.begin(); f != range.end(); ++f) {
+  detail::parallel_chunks(soup.faces.size(), 64, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f != end; ++f) {
       if (verdict[f] != BigRegular) continue;
       verdict[f] = Keep;
       if (!options.photo_consistency || images.empty()) continue;

@@ -2,8 +2,6 @@
 // matchable. Its image windows in its views must show texture and agree
 // (mean pairwise NCC of small fronto-parallel windows); tracks failing this,
 // such as mismatches floating in front of the sky, are removed.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <cmath>
@@ -11,6 +9,7 @@
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
 #include "core/grey_sampling.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -77,8 +76,8 @@ std::size_t filter_tracks_photo(StereoModel& model, const std::vector<GreyImage>
   if (images.size() != model.cameras.size()) throw InvalidArgument("one image per view is needed for the track photo-consistency filter");
   std::vector<std::uint8_t> keep(model.tracks.size(), 1);
   report_progress(progress, "track photo-consistency", 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, model.tracks.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t t = range.begin(); t != range.end(); ++t) {
+  detail::parallel_chunks(model.tracks.size(), 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t != end; ++t) {
       const double ncc = track_ncc(model.tracks[t], model, images, options.half_window, options.min_texture);
       keep[t] = std::isnan(ncc) || ncc >= options.min_ncc;  // NaN: windows off the images, undecided
     }

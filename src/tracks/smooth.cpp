@@ -2,8 +2,6 @@
 // 2003): around each point p0, a weighted tangent plane through p0, a
 // weighted least-squares quadric z = a x^2 + b y^2 + c xy + d x + e y + f
 // over it, and p0 moved onto the quadric along its normal at the origin.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -11,6 +9,7 @@
 #include "core/knn.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/stereo_reconstruct.h"
+#include "core/parallel.h"
 
 namespace sharpmesh {
 namespace {
@@ -65,21 +64,17 @@ void jet_smooth_gaussian(std::vector<Vec3>& points, int k, const Progress& progr
   if (points.size() < static_cast<std::size_t>(k) + 1) return;  // too few points to fit anything
   const detail::KnnIndex index(points);
   std::vector<Vec3> out(points.size());
-  const std::size_t n = points.size();
-  const std::size_t chunk = 4096;
-  for (std::size_t begin = 0; begin < n; begin += chunk) {
-    report_progress(progress, "jet smoothing", static_cast<double>(begin) / n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, std::min(n, begin + chunk), 64),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        std::vector<std::uint32_t> ids;
-                        std::vector<double> d2;
-                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          index.nearest(points[i], k + 1, ids, d2);
-                          out[i] = smoothed(points, i, ids, d2);
-                        }
-                      });
-  }
-  report_progress(progress, "jet smoothing", 1.0);
+  detail::parallel_chunks(
+      points.size(), 64,
+      [&](std::size_t begin, std::size_t end) {
+        std::vector<std::uint32_t> ids;
+        std::vector<double> d2;
+        for (std::size_t i = begin; i != end; ++i) {
+          index.nearest(points[i], k + 1, ids, d2);
+          out[i] = smoothed(points, i, ids, d2);
+        }
+      },
+      progress, "jet smoothing", 4096);
   points = std::move(out);
 }
 

@@ -29,8 +29,11 @@ TEST(OptionFields, EachFieldWritesItsOwnMemberOnly) {
     const FieldValue value = another_value(field, field.get(defaults));
     field.set(changed, value);
     EXPECT_EQ(field.get(changed), value) << field.name;
-    for (const auto& other : fields)
-      if (other.name != field.name) EXPECT_EQ(other.get(changed), other.get(defaults)) << field.name << " changed " << other.name;
+    for (const auto& other : fields) {
+      if (other.name != field.name) {
+        EXPECT_EQ(other.get(changed), other.get(defaults)) << field.name << " changed " << other.name;
+      }
+    }
   }
 }
 

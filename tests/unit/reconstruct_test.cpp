@@ -1,5 +1,6 @@
 // The PIF pipeline (7.3.1) end to end on analytic and real models.
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -569,6 +570,28 @@ TEST(Reconstruct, RejectsBadDeltaAndExplodingFacetCounts) {
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("max-facets"), std::string::npos) << e.what();
   }
+}
+
+// The thread limit is the call's own (a task arena): the loops inside see
+// one thread, and the mesh does not depend on how many threads ran it.
+TEST(Reconstruct, OneThreadGivesTheSameMeshAsEveryCore) {
+  const PointSet points = sample(test::chamfered_cube_mesh(0.3), 20000);
+  ReconstructOptions options;
+  options.delta = 6;
+  const ReconstructResult every_core = reconstruct(points, options);
+  options.threads = 1;
+  int most_threads_seen = 0;
+  const Progress progress = [&](const std::string&, double) {
+    most_threads_seen = std::max(most_threads_seen, tbb::this_task_arena::max_concurrency());
+    return true;
+  };
+  const ReconstructResult one_thread = reconstruct(points, options, progress);
+  EXPECT_EQ(most_threads_seen, 1);
+  ASSERT_FALSE(one_thread.mesh.faces.empty());
+  EXPECT_EQ(one_thread.mesh.vertices, every_core.mesh.vertices);
+  EXPECT_EQ(one_thread.mesh.faces, every_core.mesh.faces);
+  options.threads = -1;
+  EXPECT_THROW(reconstruct(points, options), InvalidArgument);
 }
 
 TEST(Reconstruct, RejectsTooFewPoints) {
