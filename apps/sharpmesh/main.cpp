@@ -7,6 +7,7 @@
 #include <cstring>
 #include <unistd.h>
 
+#include "cgal_messages.h"
 #include "cli.h"
 #include "sharpmesh/errors.h"
 
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   using namespace sharpmesh;
+  const cli::CgalMessageFilter cgal_messages;
   CLI::App app{"sharpmesh: turns 3D point clouds into compact triangle meshes whose sharp edges stay sharp.\n"
                "Lengths are relative: mesh sizes in multiples of the average spacing, distances in\n"
                "fractions of the bounding-box diagonal (see each command's --help)."};

@@ -49,7 +49,7 @@ struct FeatureProtection {
 struct UncoveredGap {
   Vec3 center{0, 0, 0};  ///< midpoint of the stretch
   double length = 0;     ///< length of the stretch
-  double gap = 0;        ///< largest polyline-to-surface distance on it (-1: not found)
+  double gap = 0;        ///< largest polyline-to-surface distance on it (-1: not found; null in the report)
   /// Left out because CGAL's Mesh_3 failed next to it (close or tangled
   /// features; CGAL issue #9102), and the refinement was run again without it.
   bool refused_by_mesher = false;
@@ -118,9 +118,12 @@ struct ImplicitMeshingResult {
   std::vector<Polyline> feature_edges;
   std::size_t protecting_balls = 0;      ///< corner and edge balls
   std::size_t enlarged_balls = 0;        ///< balls grown to reach the surface
-  /// CGAL's protection stopped shrinking balls after its 29 rounds (balls of
-  /// two polylines that keep intersecting; left as they were).
-  bool protection_rounds_exhausted = false;
+  /// After CGAL's protection, two balls that are not neighbours on one
+  /// polyline still intersect (polylines closer than two of its smallest
+  /// balls, or its 29 rounds of shrinking ran out): there the refinement
+  /// may not keep the polylines apart (7.3.2's guarantee needs disjoint
+  /// balls).
+  bool protecting_balls_intersect = false;
   /// The protection ran past protection_query_limit and was stopped; the
   /// mesh was made without protection.
   bool protection_stopped = false;

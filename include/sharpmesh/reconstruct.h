@@ -19,6 +19,11 @@
 namespace sharpmesh {
 
 /// Where unoriented normals come from when the input has none.
+/// Where the normals a reconstruction used came from.
+enum class NormalOrigin { Input, InputReoriented, Cvcm, Jet, Pca };
+/// "input", "input (re-oriented)", "cvcm", "jet", "pca".
+const char* to_string(NormalOrigin origin);
+
 enum class NormalSource {
   Automatic,  ///< CVCM when features are extracted, else jet fitting
   Cvcm,       ///< eigenvector of the largest eigenvalue of the convolved VCM (7.4)
@@ -148,7 +153,12 @@ struct ReconstructResult {
   std::size_t poisson_points = 0;    ///< samples the Poisson equation was solved on
   double normal_agreement = 0;       ///< of the Poisson function with its normals (PoissonDiagnostics)
   bool normals_estimated = false;
-  std::string normal_source;         ///< "input", "input (re-oriented)", "cvcm", "jet", "pca", "jet (cvcm fallback)"; "... (input normals unusable)" when fewer than half of the file's normals were non-zero
+  NormalOrigin normal_origin = NormalOrigin::Input;  ///< where the normals Poisson was solved with came from
+  /// The CVCM normals gave a function that contradicts them (agreement under
+  /// 0.9) and estimated ones (jet or pca) gave a better one (7.4).
+  bool cvcm_fallback = false;
+  /// Fewer than half of the file's normals were non-zero: they were estimated instead.
+  bool input_normals_unusable = false;
   /// Share of the input's normals whose sign the tangent MST orientation of
   /// their lines keeps (between 0.1 and 0.9: inconsistent, re-oriented); 0 without input normals.
   double input_normal_agreement = 0;

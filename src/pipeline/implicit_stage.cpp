@@ -118,7 +118,7 @@ std::size_t ImplicitSolver::repair_signs(PointSet& oriented, std::unique_ptr<Imp
 }
 
 ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bool needs_normals, bool cvcm,
-                             const std::string& estimated_name, ReconstructResult& result) {
+                             NormalOrigin estimated, ReconstructResult& result) {
   const ReconstructOptions& options = in.options;
   ImplicitStage stage;
   auto normals = [&](bool from_cvcm, const char* name) {
@@ -149,7 +149,8 @@ ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bo
         stage.surface = std::move(retry);
         stage.oriented = std::move(jet);
         stage.diagnostics = fallback;
-        result.normal_source = estimated_name + " (cvcm fallback)";
+        result.normal_origin = estimated;
+        result.cvcm_fallback = true;
       }
     } catch (const NumericalFailure&) {
       if (!stage.surface) throw;

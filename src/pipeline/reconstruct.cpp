@@ -19,6 +19,22 @@ ReconstructResult reconstruct_world(const PointSet& input, const ReconstructOpti
 
 }  // namespace
 
+const char* to_string(NormalOrigin origin) {
+  switch (origin) {
+    case NormalOrigin::Input:
+      return "input";
+    case NormalOrigin::InputReoriented:
+      return "input (re-oriented)";
+    case NormalOrigin::Cvcm:
+      return "cvcm";
+    case NormalOrigin::Jet:
+      return "jet";
+    case NormalOrigin::Pca:
+      return "pca";
+  }
+  return "?";
+}
+
 void ReconstructOptions::check(std::size_t n) const {
   if (threads < 0) throw InvalidArgument("threads must be 0 (every core) or a positive count (got " + format_number(threads) + ")");
   if (!(protection_budget >= 0) || !std::isfinite(protection_budget))
@@ -143,15 +159,16 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
   const bool cvcm = options.normal_source == NormalSource::Cvcm ||
                     (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
   const bool needs_normals = !input.has_normals() || options.recompute_normals;
-  const std::string estimated_name = options.normals.method == NormalMethod::Jet ? "jet" : "pca";
-  result.normal_source = !needs_normals ? (input_normals == InputNormals::Reoriented ? "input (re-oriented)" : "input")
-                         : cvcm ? "cvcm" : estimated_name;
-  if (input_normals == InputNormals::Unusable) result.normal_source += " (input normals unusable)";
+  const NormalOrigin estimated = options.normals.method == NormalMethod::Jet ? NormalOrigin::Jet : NormalOrigin::Pca;
+  result.normal_origin = !needs_normals ? (input_normals == InputNormals::Reoriented ? NormalOrigin::InputReoriented : NormalOrigin::Input)
+                         : cvcm ? NormalOrigin::Cvcm
+                                : estimated;
+  result.input_normals_unusable = input_normals == InputNormals::Unusable;
   result.normals_estimated = needs_normals;
   result.used_points = input.size();
 
   ImplicitSolver solver(in, result);
-  ImplicitStage implicit = solve_implicit(in, solver, needs_normals, cvcm, estimated_name, result);
+  ImplicitStage implicit = solve_implicit(in, solver, needs_normals, cvcm, estimated, result);
   mesh_surface(in, std::move(implicit.surface), implicit.oriented, estimate, result, "");
   FitStage fit = fit_and_retry(in, solver, implicit.oriented, estimate, result);
   snap_to_data(in, fit, result);

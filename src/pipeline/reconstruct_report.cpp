@@ -18,13 +18,13 @@ nlohmann::json protection_report(const ReconstructResult& r, const ReconstructOp
   const double diagonal = r.diagonal;
   nlohmann::json gaps = nlohmann::json::array();
   for (const UncoveredGap& g : m.uncovered)
-    gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", length_json(g.gap, diagonal)},
+    gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", g.gap >= 0 ? length_json(g.gap, diagonal) : nlohmann::json()},
                     {"refused_by_mesher", g.refused_by_mesher}, {"too_close", g.too_close}});
   const std::size_t polylines = o.feature_mode == FeatureMode::Given ? o.given_features.size() : r.features.graph.polylines.size();
   return {{"polylines", polylines},
           {"protecting_balls", m.protecting_balls},
           {"enlarged_balls", m.enlarged_balls},
-          {"protection_rounds_exhausted", m.protection_rounds_exhausted},
+          {"protecting_balls_intersect", m.protecting_balls_intersect},
           {"protection_stopped", m.protection_stopped},
           {"protection_queries", m.protection_queries},
           {"max_gap", length_json(m.max_gap, diagonal)},
@@ -38,6 +38,15 @@ nlohmann::json protection_report(const ReconstructResult& r, const ReconstructOp
           {"runaway_stopped_at_vertices", m.runaway_stopped_at}};
 }
 
+/// "jet (cvcm fallback)", "pca (input normals unusable)": the origin with
+/// the reason it is not the expected one.
+std::string normal_source_text(const ReconstructResult& r) {
+  std::string text = to_string(r.normal_origin);
+  if (r.cvcm_fallback) text += " (cvcm fallback)";
+  if (r.input_normals_unusable) text += " (input normals unusable)";
+  return text;
+}
+
 nlohmann::json counts_report(const ReconstructResult& r) {
   return {{"input_points", r.input_points},
           {"duplicate_points", r.duplicate_points},
@@ -45,7 +54,7 @@ nlohmann::json counts_report(const ReconstructResult& r) {
           {"poisson_points", r.poisson_points},
           {"normal_agreement", r.normal_agreement},
           {"normals_estimated", r.normals_estimated},
-          {"normal_source", r.normal_source},
+          {"normal_source", normal_source_text(r)},
           {"input_normal_agreement", r.input_normal_agreement},
           {"isotropic_cvcm_normals", r.isotropic_cvcm_normals},
           {"anchored_normals", r.anchored_normals},

@@ -36,11 +36,11 @@ std::vector<Warning> reconstruct_warnings(const ReconstructResult& r, const Reco
     out.push_back({"refinement_stalled", "refinement stopped adding vertices and was ended early; check the mesh's topology"});
   if (r.intersection_repair.remaining_pairs > 0)
     out.push_back({"self_intersecting", printed("%.0f pairs of facets still cross after the repair", double(r.intersection_repair.remaining_pairs))});
-  if (r.normal_source == "input (re-oriented)")
+  if (r.normal_origin == NormalOrigin::InputReoriented)
     out.push_back({"input_normals_reoriented",
                    printed("the input's normal signs are inconsistent (%.0f%% agree with a consistent orientation); re-oriented by MST",
                            100 * r.input_normal_agreement)});
-  if (r.normal_source.find("input normals unusable") != std::string::npos)
+  if (r.input_normals_unusable)
     out.push_back({"input_normals_unusable", "fewer than half of the input's normals are non-zero; normals estimated instead"});
   return out;
 }

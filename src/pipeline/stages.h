@@ -73,7 +73,7 @@ struct ImplicitStage {
 /// Normals, Poisson and the sign repair, with the jet fallback for CVCM
 /// normals the function disagrees with.
 ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bool needs_normals, bool cvcm,
-                             const std::string& estimated_name, ReconstructResult& result);
+                             NormalOrigin estimated, ReconstructResult& result);
 
 // ---- surface_stage.cpp -------------------------------------------------
 

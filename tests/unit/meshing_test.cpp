@@ -172,6 +172,7 @@ TEST(ImplicitMeshing, ProtectionPastItsQueryBudgetIsStoppedAndReported) {
   EXPECT_GT(protected_cube.protection_queries, 12u);
   EXPECT_GT(protected_cube.protected_segments, 12u);
   EXPECT_EQ(protected_cube.represented_segments, protected_cube.protected_segments);
+  EXPECT_FALSE(protected_cube.protecting_balls_intersect);
 
   options.protection_query_limit = 1;  // up at the second ball
   const ImplicitMeshingResult stopped = mesh_implicit_surface(surface, options);
@@ -181,6 +182,21 @@ TEST(ImplicitMeshing, ProtectionPastItsQueryBudgetIsStoppedAndReported) {
   const TopologyReport t = check_topology(stopped.mesh);
   EXPECT_TRUE(t.closed());
   EXPECT_TRUE(t.manifold());
+}
+
+// A polyline closer to a cube edge than two of CGAL's smallest balls: the
+// protection ends with the two curves' balls still intersecting, which the
+// result reports.
+TEST(ImplicitMeshing, BallsOfTwoCurvesThatKeepIntersectingAreReported) {
+  const Cube surface;
+  ImplicitMeshingOptions options;
+  options.criteria.edge_length = 0.5;
+  options.criteria.distance = 0.05;
+  options.features.polylines = cube_edges();
+  options.features.ball_radius = 0.15;  // smallest ball: 5% of it, 0.0075
+  options.features.polylines.push_back({{-0.5, 0.995, 1}, {0.5, 0.995, 1}});
+  const ImplicitMeshingResult close = mesh_implicit_surface(surface, options);
+  EXPECT_TRUE(close.protecting_balls_intersect);
 }
 
 TEST(ImplicitMeshing, RejectsNonFiniteDataSeeds) {
