@@ -157,16 +157,26 @@ TEST(ImplicitMeshing, DataSeedsKeepAFinThinnerThanTheFacets) {
   EXPECT_FALSE(t.self_intersecting);
 }
 
-// A protection that runs past its query budget (a stand-in for a curve CGAL
-// walks for ever) is stopped; the cube is meshed without it, its edges are
-// reported as uncovered, and the mesh is still closed and manifold.
-TEST(ImplicitMeshing, ProtectionPastItsQueryBudgetIsStoppedAndReported) {
-  const Cube surface;
+namespace {
+
+// The cube's 12 edges protected by balls of 0.15, facets up to 0.5.
+ImplicitMeshingOptions cube_with_protected_edges() {
   ImplicitMeshingOptions options;
   options.criteria.edge_length = 0.5;
   options.criteria.distance = 0.05;
   options.features.polylines = cube_edges();
   options.features.ball_radius = 0.15;
+  return options;
+}
+
+}  // namespace
+
+// A protection that runs past its query budget (a stand-in for a curve CGAL
+// walks for ever) is stopped; the cube is meshed without it, its edges are
+// reported as uncovered, and the mesh is still closed and manifold.
+TEST(ImplicitMeshing, ProtectionPastItsQueryBudgetIsStoppedAndReported) {
+  const Cube surface;
+  ImplicitMeshingOptions options = cube_with_protected_edges();
   const ImplicitMeshingResult protected_cube = mesh_implicit_surface(surface, options);
   EXPECT_FALSE(protected_cube.protection_stopped);
   EXPECT_GT(protected_cube.protection_queries, 12u);
@@ -189,11 +199,7 @@ TEST(ImplicitMeshing, ProtectionPastItsQueryBudgetIsStoppedAndReported) {
 // result reports.
 TEST(ImplicitMeshing, BallsOfTwoCurvesThatKeepIntersectingAreReported) {
   const Cube surface;
-  ImplicitMeshingOptions options;
-  options.criteria.edge_length = 0.5;
-  options.criteria.distance = 0.05;
-  options.features.polylines = cube_edges();
-  options.features.ball_radius = 0.15;  // smallest ball: 5% of it, 0.0075
+  ImplicitMeshingOptions options = cube_with_protected_edges();  // smallest ball: 5% of 0.15, 0.0075
   options.features.polylines.push_back({{-0.5, 0.995, 1}, {0.5, 0.995, 1}});
   const ImplicitMeshingResult close = mesh_implicit_surface(surface, options);
   EXPECT_TRUE(close.protecting_balls_intersect);
