@@ -69,11 +69,11 @@ Command add_reconstruct(CLI::App& app) {
       if (!timed_out) throw;
       throw Error(o->input + ": the reconstruction ran past --time-limit " + format_number(limit) + " s; nothing written");
     }
-    const bool crossing = options.repair_self_intersections ? result.intersection_repair.remaining_pairs > 0
+    const bool crossing = options.repair_self_intersections ? result.repairs.intersection_repair.remaining_pairs > 0
                                                              : !self_intersecting_faces(result.mesh).empty();
     if (crossing && !o->allow_invalid)
       throw Error(o->input + ": the mesh has facets that cross others" +
-                  (options.repair_self_intersections ? " after " + std::to_string(result.intersection_repair.rounds) + " repair rounds" : std::string()) +
+                  (options.repair_self_intersections ? " after " + std::to_string(result.repairs.intersection_repair.rounds) + " repair rounds" : std::string()) +
                   "; nothing written (--allow-invalid writes it anyway)");
     {
       StageTimer timer(io_stages, "write");
@@ -87,17 +87,17 @@ Command add_reconstruct(CLI::App& app) {
     if (!common->quiet) {
       printer.message("reconstruct: " + std::to_string(result.input_points) + " points -> " + std::to_string(result.mesh.faces.size()) +
                       " facets, " + std::to_string(result.mesh.vertices.size()) + " vertices -> " + o->output);
-      if (result.trimmed_facets > 0)
-        printer.message("  open surface: " + std::to_string(result.trimmed_facets) + " facets far from the data removed, " +
-                        std::to_string(result.clipped_facets) + " cut along the data's edge, " +
+      if (result.repairs.trimmed_facets > 0)
+        printer.message("  open surface: " + std::to_string(result.repairs.trimmed_facets) + " facets far from the data removed, " +
+                        std::to_string(result.repairs.clipped_facets) + " cut along the data's edge, " +
                         std::to_string(result.boundary_edges) + " boundary edges");
-      if (result.intersection_repair.intersecting_pairs > 0)
-        printer.message("  self-intersections: " + std::to_string(result.intersection_repair.intersecting_pairs) + " crossing facet pairs, " +
-                        std::to_string(result.intersection_repair.removed_facets) + " facets cut out, " +
-                        std::to_string(result.intersection_repair.added_facets) + " filled in, " +
-                        std::to_string(result.intersection_repair.remaining_pairs) + " pairs left");
-      if (result.dataless_facets > 0)
-        printer.message("  " + std::to_string(result.dataless_facets) + " facets of components away from the data removed");
+      if (result.repairs.intersection_repair.intersecting_pairs > 0)
+        printer.message("  self-intersections: " + std::to_string(result.repairs.intersection_repair.intersecting_pairs) + " crossing facet pairs, " +
+                        std::to_string(result.repairs.intersection_repair.removed_facets) + " facets cut out, " +
+                        std::to_string(result.repairs.intersection_repair.added_facets) + " filled in, " +
+                        std::to_string(result.repairs.intersection_repair.remaining_pairs) + " pairs left");
+      if (result.repairs.dataless_facets > 0)
+        printer.message("  " + std::to_string(result.repairs.dataless_facets) + " facets of components away from the data removed");
       if (options.feature_mode != FeatureMode::None) {
         char line[200];
         std::snprintf(line, sizeof line, "  features: %zu polylines, %zu balls (%zu grown), %zu/%zu segments are mesh edges, %zu uncovered gaps",

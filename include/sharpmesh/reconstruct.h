@@ -140,18 +140,9 @@ struct Warning {
   std::string message;
 };
 
-struct ReconstructResult {
-  SurfaceMesh mesh;
-  double diagonal = 0;  ///< of the input's bounding box: the report gives lengths also as fractions of it
-  double average_spacing = 0;
-  double d_prime = 0;
-  double estimated_facets = 0;
-  RefinementCriteria criteria;
-  std::size_t input_points = 0;
-  std::size_t duplicate_points = 0;  ///< removed: same position as an earlier point
-  std::size_t used_points = 0;       ///< after removing duplicated and unorientable points
-  std::size_t poisson_points = 0;    ///< samples the Poisson equation was solved on
-  double normal_agreement = 0;       ///< of the Poisson function with its normals (PoissonDiagnostics)
+/// The normals stage: where the normals came from and what the orientation
+/// and its repairs changed (7.4, App. A.8 and the repairs beyond them).
+struct NormalsStats {
   bool normals_estimated = false;
   NormalOrigin normal_origin = NormalOrigin::Input;  ///< where the normals Poisson was solved with came from
   /// The CVCM normals gave a function that contradicts them (agreement under
@@ -170,23 +161,37 @@ struct ReconstructResult {
   std::size_t enclosed_flipped_normals = 0;  ///< normals of regions the rest of the cloud encloses on their outer side (repair_enclosed_normals)
   std::size_t sharpened_normals = 0;  ///< isotropic-CVCM normals replaced by crease-aware ones (shifted planes)
   std::size_t sign_repaired_normals = 0;  ///< normal flips kept by the sign repair against the Poisson function
-  FeatureResult features;            ///< when extracted (graph only when given)
-  ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
-  bool restricted = false;           ///< the implicit function was cut away from the data (open surfaces)
-  std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
-  std::size_t dataless_facets = 0;   ///< of whole components off the data, removed (remove_components_off_points)
+};
+
+/// The implicit stage: the Poisson function the surface was meshed from.
+struct ImplicitStats {
+  std::size_t poisson_points = 0;    ///< samples the Poisson equation was solved on
+  double normal_agreement = 0;       ///< of the Poisson function with its normals (PoissonDiagnostics)
+  double poisson_screening = 0;      ///< the weight used (poisson_screening or poisson_screening_noisy)
   std::size_t thin_part_vertices = 0;  ///< Poisson vertices added inside thin material and gaps
   std::size_t thin_points = 0;         ///< input points where the solid or a gap is thinner than the seed spacing / 2
+  bool restricted = false;           ///< the function was cut away from the data (open surfaces)
+};
+
+/// The repairs after the refinement (beyond the thesis): trim and clip of
+/// open surfaces, flattening next to features, snapping onto the data, the
+/// self-intersection repair.
+struct RepairStats {
+  std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
+  std::size_t dataless_facets = 0;   ///< of whole components off the data, removed (remove_components_off_points)
+  std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t flattened_vertices = 0;  ///< moved onto the face planes next to protected edges
   std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect
-  double poisson_screening = 0;       ///< the weight used (poisson_screening or poisson_screening_noisy)
   std::size_t snapped_corners = 0;     ///< mesh vertices moved onto corners the refinement missed
   std::size_t snapped_to_data = 0;     ///< mesh vertices moved onto input points the mesh missed
   std::size_t snapped_off_data = 0;    ///< mesh vertices away from the data moved onto its tangent planes
   std::size_t unsnapped_vertices = 0;  ///< snaps undone because they made facets intersect
-  std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
-  std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
   IntersectionRepairStats intersection_repair;  ///< crossings found, repaired and left (remaining_pairs)
+};
+
+/// The mesh checked against its own input points, and the retries with the
+/// normals of the points it leaves out flipped (beyond the thesis).
+struct DataFitStats {
   /// Input points farther than off_data_distance = max(1.5 avg, the
   /// surface-distance criterion) + 3 x the noise from the output mesh: data
   /// the surface does not represent (measured with or without refit_off_data).
@@ -198,6 +203,26 @@ struct ReconstructResult {
   std::size_t off_data_points_before_retry = 0;  ///< off the first mesh (before any retry)
   std::size_t off_data_flips = 0;    ///< normals flipped by the kept retry (0: none kept)
   double max_data_distance = 0;      ///< largest distance of an input point to the output mesh
+};
+
+/// What reconstruct() made, stage by stage.
+struct ReconstructResult {
+  SurfaceMesh mesh;
+  double diagonal = 0;  ///< of the input's bounding box: the report gives lengths also as fractions of it
+  double average_spacing = 0;
+  double d_prime = 0;
+  double estimated_facets = 0;
+  RefinementCriteria criteria;
+  std::size_t input_points = 0;
+  std::size_t duplicate_points = 0;  ///< removed: same position as an earlier point
+  std::size_t used_points = 0;       ///< after removing duplicated and unorientable points
+  std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
+  FeatureResult features;            ///< when extracted (graph only when given)
+  NormalsStats normals;
+  ImplicitStats implicit;
+  ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
+  RepairStats repairs;
+  DataFitStats data_fit;
   std::vector<Warning> warnings;
   std::vector<StageTiming> stages;
 };

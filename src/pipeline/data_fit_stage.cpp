@@ -24,7 +24,7 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
                        ReconstructResult& result) {
   const ReconstructOptions& options = in.options;
   const double off_distance = off_data_distance(result, options);
-  result.off_data_distance = off_distance;
+  result.data_fit.off_data_distance = off_distance;
   DataFit fit;
   std::vector<Vec3> retry_normals;  // the normals of the mesh kept, when a retry's
   {
@@ -33,7 +33,7 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
   }
   const bool may_retry = options.refit_off_data && options.repair_normal_signs && options.check_input_normals;
   const std::size_t worth_a_retry = std::max<std::size_t>(10, oriented.size() / 5000);
-  result.off_data_points_before_retry = fit.off.size();
+  result.data_fit.off_data_points_before_retry = fit.off.size();
   if (may_retry && fit.off_and_against.size() >= worth_a_retry) {
     // Two flip sets: the points off and against the mesh, and all the
     // points off it within 3 spacings of those (on a curved wall part of
@@ -57,12 +57,12 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
         {
           StageTimer timer(retry.stages, prefix + "poisson and sign repair");
           function = solver.solve(flipped, retry_diagnostics);
-          retry.sign_repaired_normals = result.sign_repaired_normals + solver.repair_signs(flipped, function, retry_diagnostics);
+          retry.normals.sign_repaired_normals = result.normals.sign_repaired_normals + solver.repair_signs(flipped, function, retry_diagnostics);
         }
-        retry.poisson_points = function->sample_count();
-        retry.normal_agreement = retry_diagnostics.normal_agreement;
-        retry.thin_points = 0;
-        retry.flattened_vertices = retry.unflattened_vertices = 0;
+        retry.implicit.poisson_points = function->sample_count();
+        retry.implicit.normal_agreement = retry_diagnostics.normal_agreement;
+        retry.implicit.thin_points = 0;
+        retry.repairs.flattened_vertices = retry.repairs.unflattened_vertices = 0;
         mesh_surface(in, std::move(function), flipped, expected_facets, retry, prefix);
         DataFit refit;
         {
@@ -77,7 +77,7 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
         const bool better = 4 * refit.off_and_against.size() <= 3 * fit.off_and_against.size() && refit.off.size() <= fit.off.size() &&
                             refit.max_distance <= fit.max_distance;
         if (better && (!best || refit.off.size() + refit.invented_vertices < best_fit.off.size() + best_fit.invented_vertices)) {
-          retry.off_data_flips = flips;
+          retry.data_fit.off_data_flips = flips;
           best = std::move(retry);
           best_fit = std::move(refit);
           retry_normals = std::move(flipped.normals);
@@ -85,11 +85,11 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
       } catch (const NumericalFailure&) {
         stages.insert(stages.end(), retry.stages.begin(), retry.stages.end());
       }
-      ++result.data_fit_retries;
+      ++result.data_fit.data_fit_retries;
       if (best && best_fit.off.empty() && best_fit.invented_vertices == 0) break;  // nothing left to improve
     }
     if (best) {
-      best->data_fit_retries = result.data_fit_retries;
+      best->data_fit.data_fit_retries = result.data_fit.data_fit_retries;
       result = std::move(*best);
       fit = std::move(best_fit);
     }

@@ -68,11 +68,11 @@ std::unique_ptr<ImplicitSurface> ImplicitSolver::solve(const PointSet& oriented,
   PoissonOptions poisson;
   const bool noisy = options.feature_mode == FeatureMode::Extract &&
                      (result_.features.denoise_passes > 0 || !(result_.features.noise_estimate < kCleanNoiseRatio * result_.average_spacing));
-  poisson.screening = result_.poisson_screening = noisy ? options.poisson_screening_noisy : options.poisson_screening;
+  poisson.screening = result_.implicit.poisson_screening = noisy ? options.poisson_screening_noisy : options.poisson_screening;
   poisson.average_spacing = result_.average_spacing;
   if (options.thin_part_vertices && !thin_vertices_) thin_vertices_ = thin_part_vertices(oriented, result_.average_spacing);
   if (thin_vertices_) poisson.extra_vertices = *thin_vertices_;
-  result_.thin_part_vertices = poisson.extra_vertices.size();
+  result_.implicit.thin_part_vertices = poisson.extra_vertices.size();
   if (!thin && !grid) return poisson_surface(oriented, poisson, in_.progress, &diagnostics);
   PointSet samples{oriented.points, oriented.normals, {}};
   if (grid) grid_simplify(samples, options.poisson_spacing * result_.d_prime);
@@ -149,8 +149,8 @@ ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bo
         stage.surface = std::move(retry);
         stage.oriented = std::move(jet);
         stage.diagnostics = fallback;
-        result.normal_origin = estimated;
-        result.cvcm_fallback = true;
+        result.normals.normal_origin = estimated;
+        result.normals.cvcm_fallback = true;
       }
     } catch (const NumericalFailure&) {
       if (!stage.surface) throw;
@@ -158,10 +158,10 @@ ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bo
   }
   if (options.repair_normal_signs && options.check_input_normals) {
     StageTimer timer(result.stages, "sign repair");
-    result.sign_repaired_normals = solver.repair_signs(stage.oriented, stage.surface, stage.diagnostics);
+    result.normals.sign_repaired_normals = solver.repair_signs(stage.oriented, stage.surface, stage.diagnostics);
   }
-  result.poisson_points = stage.surface->sample_count();
-  result.normal_agreement = stage.diagnostics.normal_agreement;
+  result.implicit.poisson_points = stage.surface->sample_count();
+  result.implicit.normal_agreement = stage.diagnostics.normal_agreement;
   return stage;
 }
 

@@ -89,7 +89,7 @@ PointSet oriented_normals(const PipelineInput& in, bool from_cvcm, ReconstructRe
     // Automatic normals replace the isotropic CVCM ones; --normals cvcm is the thesis's 7.4 throughout.
     const double min_anisotropy = options.normal_source == NormalSource::Automatic ? 20.0 : 0.0;
     isotropic = cvcm_normals(oriented, result.features, options.normals, min_anisotropy);
-    result.isotropic_cvcm_normals = isotropic.size();
+    result.normals.isotropic_cvcm_normals = isotropic.size();
   } else {
     estimate_normals(oriented, options.normals, in.progress);
   }
@@ -99,18 +99,18 @@ PointSet oriented_normals(const PipelineInput& in, bool from_cvcm, ReconstructRe
   std::vector<signed char> anchors;
   if (automatic && options.anchor_orientation) {
     anchors = occupancy_anchors(oriented, result.average_spacing, result.features.noise_estimate, options.orientation.k);
-    result.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
+    result.normals.anchored_normals = static_cast<std::size_t>(std::count_if(anchors.begin(), anchors.end(), [](signed char v) { return v != 0; }));
   }
   orient_normals_tangent_mst(oriented, options.orientation.k, anchors, in.progress);
   // The crease points' jet normals carried the MST across the creases;
   // the anisotropic CVCM normals vote on it (patch_orientation.cpp).
   if (from_cvcm && automatic)
-    result.patch_flipped_normals = repair_inverted_patches(oriented, isotropic, result.average_spacing, options.orientation.k);
+    result.normals.patch_flipped_normals = repair_inverted_patches(oriented, isotropic, result.average_spacing, options.orientation.k);
   // Regions the rest of the surface encloses on their outer side
   // (enclosed_orientation.cpp); not on the PIF baseline (--no-features).
   if (automatic && options.repair_enclosed_normals)
-    result.enclosed_flipped_normals = repair_enclosed_normals(oriented, result.average_spacing);
-  if (from_cvcm && automatic) result.sharpened_normals = sharpen_normals(oriented, isotropic, result.features);
+    result.normals.enclosed_flipped_normals = repair_enclosed_normals(oriented, result.average_spacing);
+  if (from_cvcm && automatic) result.normals.sharpened_normals = sharpen_normals(oriented, isotropic, result.features);
   return oriented;
 }
 

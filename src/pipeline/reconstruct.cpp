@@ -110,8 +110,8 @@ ReconstructResult reconstruct_world(const PointSet& input, const ReconstructOpti
   // the repair, which changes a few facets.
   if (options.repair_self_intersections && !result.mesh.faces.empty()) {
     StageTimer timer(result.stages, "self-intersection check");
-    result.intersection_repair = repair_self_intersections(result.mesh, {}, progress);
-    if (result.intersection_repair.rounds > 0) result.boundary_edges = count_boundary_edges(result.mesh);
+    result.repairs.intersection_repair = repair_self_intersections(result.mesh, {}, progress);
+    if (result.repairs.intersection_repair.rounds > 0) result.boundary_edges = count_boundary_edges(result.mesh);
   }
   for (double* length : {&result.average_spacing, &result.d_prime, &result.criteria.edge_length, &result.criteria.distance})
     *length = frame.length_to_world(*length);
@@ -129,7 +129,7 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
   if (given.has_normals() && !options.recompute_normals && options.check_input_normals) {
     StageTimer timer(result.stages, "normal check");
     checked = given;
-    input_normals = check_input_normals(checked, options, result.input_normal_agreement, progress);
+    input_normals = check_input_normals(checked, options, result.normals.input_normal_agreement, progress);
     if (input_normals == InputNormals::Unusable) checked.normals.clear();
   }
   const PointSet& input = checked.points.empty() ? given : checked;
@@ -160,11 +160,11 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
                     (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
   const bool needs_normals = !input.has_normals() || options.recompute_normals;
   const NormalOrigin estimated = options.normals.method == NormalMethod::Jet ? NormalOrigin::Jet : NormalOrigin::Pca;
-  result.normal_origin = !needs_normals ? (input_normals == InputNormals::Reoriented ? NormalOrigin::InputReoriented : NormalOrigin::Input)
+  result.normals.normal_origin = !needs_normals ? (input_normals == InputNormals::Reoriented ? NormalOrigin::InputReoriented : NormalOrigin::Input)
                          : cvcm ? NormalOrigin::Cvcm
                                 : estimated;
-  result.input_normals_unusable = input_normals == InputNormals::Unusable;
-  result.normals_estimated = needs_normals;
+  result.normals.input_normals_unusable = input_normals == InputNormals::Unusable;
+  result.normals.normals_estimated = needs_normals;
   result.used_points = input.size();
 
   ImplicitSolver solver(in, result);
@@ -172,10 +172,10 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
   mesh_surface(in, std::move(implicit.surface), implicit.oriented, estimate, result, "");
   FitStage fit = fit_and_retry(in, solver, implicit.oriented, estimate, result);
   snap_to_data(in, fit, result);
-  result.off_data_points = fit.fit.off.size();
-  result.off_data_against = fit.fit.off_and_against.size();
-  result.invented_vertices = fit.fit.invented_vertices;
-  result.max_data_distance = fit.fit.max_distance;
+  result.data_fit.off_data_points = fit.fit.off.size();
+  result.data_fit.off_data_against = fit.fit.off_and_against.size();
+  result.data_fit.invented_vertices = fit.fit.invented_vertices;
+  result.data_fit.max_data_distance = fit.fit.max_distance;
   return result;
 }
 

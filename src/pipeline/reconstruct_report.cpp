@@ -41,9 +41,9 @@ nlohmann::json protection_report(const ReconstructResult& r, const ReconstructOp
 /// "jet (cvcm fallback)", "pca (input normals unusable)": the origin with
 /// the reason it is not the expected one.
 std::string normal_source_text(const ReconstructResult& r) {
-  std::string text = to_string(r.normal_origin);
-  if (r.cvcm_fallback) text += " (cvcm fallback)";
-  if (r.input_normals_unusable) text += " (input normals unusable)";
+  std::string text = to_string(r.normals.normal_origin);
+  if (r.normals.cvcm_fallback) text += " (cvcm fallback)";
+  if (r.normals.input_normals_unusable) text += " (input normals unusable)";
   return text;
 }
 
@@ -51,48 +51,48 @@ nlohmann::json counts_report(const ReconstructResult& r) {
   return {{"input_points", r.input_points},
           {"duplicate_points", r.duplicate_points},
           {"points_used", r.used_points},
-          {"poisson_points", r.poisson_points},
-          {"normal_agreement", r.normal_agreement},
-          {"normals_estimated", r.normals_estimated},
+          {"poisson_points", r.implicit.poisson_points},
+          {"normal_agreement", r.implicit.normal_agreement},
+          {"normals_estimated", r.normals.normals_estimated},
           {"normal_source", normal_source_text(r)},
-          {"input_normal_agreement", r.input_normal_agreement},
-          {"isotropic_cvcm_normals", r.isotropic_cvcm_normals},
-          {"anchored_normals", r.anchored_normals},
-          {"patch_flipped_normals", r.patch_flipped_normals},
-          {"enclosed_flipped_normals", r.enclosed_flipped_normals},
-          {"sharpened_normals", r.sharpened_normals},
-          {"sign_repaired_normals", r.sign_repaired_normals},
+          {"input_normal_agreement", r.normals.input_normal_agreement},
+          {"isotropic_cvcm_normals", r.normals.isotropic_cvcm_normals},
+          {"anchored_normals", r.normals.anchored_normals},
+          {"patch_flipped_normals", r.normals.patch_flipped_normals},
+          {"enclosed_flipped_normals", r.normals.enclosed_flipped_normals},
+          {"sharpened_normals", r.normals.sharpened_normals},
+          {"sign_repaired_normals", r.normals.sign_repaired_normals},
           {"vertices", r.mesh.vertices.size()},
           {"facets", r.mesh.faces.size()},
-          {"thin_part_vertices", r.thin_part_vertices},
-          {"restricted_to_data", r.restricted},
+          {"thin_part_vertices", r.implicit.thin_part_vertices},
+          {"restricted_to_data", r.implicit.restricted},
           {"data_seeds", r.meshing.data_seeds},
-          {"thin_points", r.thin_points},
-          {"flattened_vertices", r.flattened_vertices},
-          {"unflattened_vertices", r.unflattened_vertices},
-          {"poisson_screening", r.poisson_screening},
-          {"snapped_corners", r.snapped_corners},
-          {"snapped_to_data", r.snapped_to_data},
-          {"snapped_off_data", r.snapped_off_data},
-          {"unsnapped_vertices", r.unsnapped_vertices},
-          {"trimmed_facets", r.trimmed_facets},
-          {"dataless_facets", r.dataless_facets},
-          {"clipped_facets", r.clipped_facets},
+          {"thin_points", r.implicit.thin_points},
+          {"flattened_vertices", r.repairs.flattened_vertices},
+          {"unflattened_vertices", r.repairs.unflattened_vertices},
+          {"poisson_screening", r.implicit.poisson_screening},
+          {"snapped_corners", r.repairs.snapped_corners},
+          {"snapped_to_data", r.repairs.snapped_to_data},
+          {"snapped_off_data", r.repairs.snapped_off_data},
+          {"unsnapped_vertices", r.repairs.unsnapped_vertices},
+          {"trimmed_facets", r.repairs.trimmed_facets},
+          {"dataless_facets", r.repairs.dataless_facets},
+          {"clipped_facets", r.repairs.clipped_facets},
           {"boundary_edges", r.boundary_edges}};
 }
 
 nlohmann::json data_fit_report(const ReconstructResult& r) {
   const double spacing = r.average_spacing > 0 ? r.average_spacing : 1.0;
-  return {{"off_distance", length_json(r.off_data_distance, r.diagonal)},
-          {"off_distance_avg_spacings", r.off_data_distance / spacing},
-          {"points_off_mesh", r.off_data_points},
-          {"points_off_against_mesh", r.off_data_against},
-          {"vertices_off_data", r.invented_vertices},
-          {"retries", r.data_fit_retries},
-          {"max_distance", length_json(r.max_data_distance, r.diagonal)},
-          {"max_distance_avg_spacings", r.max_data_distance / spacing},
-          {"points_off_first_mesh", r.off_data_points_before_retry},
-          {"retry_flipped_normals", r.off_data_flips}};
+  return {{"off_distance", length_json(r.data_fit.off_data_distance, r.diagonal)},
+          {"off_distance_avg_spacings", r.data_fit.off_data_distance / spacing},
+          {"points_off_mesh", r.data_fit.off_data_points},
+          {"points_off_against_mesh", r.data_fit.off_data_against},
+          {"vertices_off_data", r.data_fit.invented_vertices},
+          {"retries", r.data_fit.data_fit_retries},
+          {"max_distance", length_json(r.data_fit.max_data_distance, r.diagonal)},
+          {"max_distance_avg_spacings", r.data_fit.max_data_distance / spacing},
+          {"points_off_first_mesh", r.data_fit.off_data_points_before_retry},
+          {"retry_flipped_normals", r.data_fit.off_data_flips}};
 }
 
 }  // namespace
@@ -118,11 +118,11 @@ nlohmann::json reconstruct_report(const ReconstructResult& r, const ReconstructO
       {"data_fit", data_fit_report(r)},
       {"self_intersections",
        {{"repair", o.repair_self_intersections},
-        {"found_pairs", r.intersection_repair.intersecting_pairs},
-        {"remaining_pairs", r.intersection_repair.remaining_pairs},
-        {"removed_facets", r.intersection_repair.removed_facets},
-        {"added_facets", r.intersection_repair.added_facets},
-        {"rounds", r.intersection_repair.rounds}}},
+        {"found_pairs", r.repairs.intersection_repair.intersecting_pairs},
+        {"remaining_pairs", r.repairs.intersection_repair.remaining_pairs},
+        {"removed_facets", r.repairs.intersection_repair.removed_facets},
+        {"added_facets", r.repairs.intersection_repair.added_facets},
+        {"rounds", r.repairs.intersection_repair.rounds}}},
       {"refinement",
        {{"steps", r.meshing.refinement_steps}, {"stalled", r.meshing.refinement_stalled}, {"runaway", r.meshing.refinement_runaway}}},
       {"warnings", warnings},

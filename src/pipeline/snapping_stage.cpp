@@ -15,7 +15,7 @@ namespace sharpmesh::detail {
 void snap_to_data(const PipelineInput& in, FitStage& stage, ReconstructResult& result) {
   const ReconstructOptions& options = in.options;
   const double noise = options.feature_mode == FeatureMode::Extract ? result.features.noise_estimate : 0.0;
-  const double off_distance = result.off_data_distance;
+  const double off_distance = result.data_fit.off_data_distance;
   if (options.snap_vertices && options.feature_mode == FeatureMode::Extract && !result.mesh.faces.empty()) {
     std::vector<Vec3> corners;
     for (const Junction& j : result.features.graph.junctions)
@@ -33,12 +33,12 @@ void snap_to_data(const PipelineInput& in, FitStage& stage, ReconstructResult& r
     {
       StageTimer timer(result.stages, "snapping");
       const SnappingStats stats = snap_to_corners_and_data(result.mesh, corners, in.points.points, snapping);
-      result.snapped_corners = stats.corners;
-      result.snapped_to_data = stats.data_points;
-      result.snapped_off_data = stats.off_data_vertices;
-      result.unsnapped_vertices = stats.undone;
+      result.repairs.snapped_corners = stats.corners;
+      result.repairs.snapped_to_data = stats.data_points;
+      result.repairs.snapped_off_data = stats.off_data_vertices;
+      result.repairs.unsnapped_vertices = stats.undone;
     }
-    if (result.snapped_corners + result.snapped_to_data + result.snapped_off_data > result.unsnapped_vertices) {
+    if (result.repairs.snapped_corners + result.repairs.snapped_to_data + result.repairs.snapped_off_data > result.repairs.unsnapped_vertices) {
       StageTimer timer(result.stages, "data fit after snapping");
       stage.fit = fit_to_data(result.mesh, in.points.points, stage.normals, off_distance);
     }

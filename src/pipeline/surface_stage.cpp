@@ -35,7 +35,7 @@ void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult&
       meshing.thin_thickness.push_back(thickness[i]);
       const double local = std::min(uniform, thickness[i]);
       facet_ratio += (uniform / local) * (uniform / local) - 1;
-      ++result.thin_points;
+      ++result.implicit.thin_points;
     }
     meshing.expected_facets *= 1 + facet_ratio / static_cast<double>(oriented.size());
   }
@@ -68,7 +68,7 @@ void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> func
     const double domain_radius = meshing_domain_radius(*function);
     Restriction restriction = restrict_to_points(std::move(function), in.points.points, 2 * trim_distance, domain_radius);
     function = std::move(restriction.surface);
-    out.restricted = restriction.applied;
+    out.implicit.restricted = restriction.applied;
   }
   ImplicitMeshingOptions meshing;
   meshing.criteria = out.criteria;
@@ -107,26 +107,26 @@ void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> func
     flattening.max_move = std::min(0.25 * out.d_prime, 2 * out.average_spacing);
     flattening.max_residual = 0.15 * out.d_prime;
     const std::vector<Vec3> before = out.mesh.vertices;
-    out.flattened_vertices =
+    out.repairs.flattened_vertices =
         flatten_next_to_features(out.mesh, out.meshing.feature_edges, normals.points, normals.normals, flattening);
     // A move can still push a facet through a neighbour: such moves go back.
-    if (out.flattened_vertices > 0) {
+    if (out.repairs.flattened_vertices > 0) {
       const std::size_t restored = undo_intersecting_moves(out.mesh, before);
-      out.flattened_vertices -= std::min(out.flattened_vertices, restored);
-      out.unflattened_vertices += restored;
+      out.repairs.flattened_vertices -= std::min(out.repairs.flattened_vertices, restored);
+      out.repairs.unflattened_vertices += restored;
     }
   }
   // Closed or open, a component whose vertices mostly lie off the data is
   // the implicit function's, not the data's (a bubble in a gap between
   // nested solids).
-  out.dataless_facets = remove_components_off_points(out.mesh, in.points.points, off_data_distance(out, options));
+  out.repairs.dataless_facets = remove_components_off_points(out.mesh, in.points.points, off_data_distance(out, options));
   if (options.trim_distance > 0) {
     StageTimer timer(out.stages, retry_prefix + "trim");
-    out.trimmed_facets =
+    out.repairs.trimmed_facets =
         trim_far_from_points(out.mesh, in.points.points, trim_distance);
     if (out.mesh.faces.empty()) throw NumericalFailure("reconstruction: no facet of the mesh lies near the input points");
     if (options.clip_boundary)
-      out.clipped_facets = clip_boundary_to_points(out.mesh, in.points.points, out.average_spacing);
+      out.repairs.clipped_facets = clip_boundary_to_points(out.mesh, in.points.points, out.average_spacing);
     out.boundary_edges = count_boundary_edges(out.mesh);
   }
 }

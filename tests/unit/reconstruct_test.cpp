@@ -48,12 +48,12 @@ TEST(Reconstruct, SphereGivesAClosedManifoldMeshCloseToTheSphere) {
   const SurfaceMesh sphere = test::sphere_mesh(5);
   ReconstructOptions options;
   const ReconstructResult r = reconstruct(sample(sphere, 20000), options);
-  EXPECT_TRUE(r.normals_estimated);
+  EXPECT_TRUE(r.normals.normals_estimated);
   EXPECT_GT(r.mesh.faces.size(), 500u);
   // Closed: the zero set stays near the data, so the function is not cut
   // (a cut would add an offset sphere inside, meshed and then trimmed).
-  EXPECT_FALSE(r.restricted);
-  EXPECT_EQ(r.trimmed_facets, 0u);
+  EXPECT_FALSE(r.implicit.restricted);
+  EXPECT_EQ(r.repairs.trimmed_facets, 0u);
   expect_valid_and_close(r.mesh, sphere, 0.005);
   // The facet estimate that guards --max-facets is within a factor 2 of the truth.
   EXPECT_GT(r.estimated_facets, 0.5 * r.mesh.faces.size());
@@ -101,16 +101,16 @@ TEST(FeaturePreservingReconstruction, CubeKeepsTwelveSharpEdgesAndEightCorners) 
   ReconstructOptions options;
   options.delta = 6;
   const ReconstructResult r = reconstruct(sample(cube, 30000), options);
-  EXPECT_EQ(r.normal_origin, NormalOrigin::Cvcm);
+  EXPECT_EQ(r.normals.normal_origin, NormalOrigin::Cvcm);
   ASSERT_EQ(r.features.graph.polylines.size(), 12u);
   EXPECT_EQ(r.meshing.represented_segments, r.meshing.protected_segments);
   EXPECT_TRUE(r.meshing.uncovered.empty());
   EXPECT_EQ(r.boundary_edges, 0u);
-  EXPECT_GT(r.flattened_vertices, 0u);
+  EXPECT_GT(r.repairs.flattened_vertices, 0u);
   // Every input point is on the mesh: no data-fit retry.
-  EXPECT_EQ(r.off_data_points, 0u);
-  EXPECT_EQ(r.off_data_points_before_retry, 0u);
-  EXPECT_LT(r.max_data_distance, r.average_spacing);
+  EXPECT_EQ(r.data_fit.off_data_points, 0u);
+  EXPECT_EQ(r.data_fit.off_data_points_before_retry, 0u);
+  EXPECT_LT(r.data_fit.max_data_distance, r.average_spacing);
   expect_valid_and_close(r.mesh, cube, 0.005);
   // The feature edges of the mesh: all 12 cube edges, nothing else.
   FeatureEvalOptions eval;
@@ -138,7 +138,7 @@ TEST(FeaturePreservingReconstruction, TetrahedronWithAcuteEdgesGivesAClosedMesh)
   const SurfaceMesh tetrahedron = test::tetrahedron_mesh();
   const ReconstructResult r = reconstruct(sample(tetrahedron, 30000), {});
   EXPECT_EQ(r.boundary_edges, 0u);
-  EXPECT_FALSE(r.restricted);
+  EXPECT_FALSE(r.implicit.restricted);
   expect_valid_and_close(r.mesh, tetrahedron, 0.012);
 }
 
@@ -203,13 +203,13 @@ TEST(FeaturePreservingReconstruction, OpenSheetIsTrimmedToTheData) {
   ReconstructOptions options;
   options.feature_mode = FeatureMode::None;
   const ReconstructResult r = reconstruct(sheet, options);
-  EXPECT_TRUE(r.restricted);  // Poisson's closing sheet leaves the data
-  EXPECT_GT(r.trimmed_facets, 0u);
+  EXPECT_TRUE(r.implicit.restricted);  // Poisson's closing sheet leaves the data
+  EXPECT_GT(r.repairs.trimmed_facets, 0u);
   EXPECT_GT(r.boundary_edges, 0u);
   for (const Vec3& v : r.mesh.vertices) EXPECT_LT(std::abs(v[2] - 0.05 * std::sin(3.0 * v[0])), 0.03);
   // The boundary is cut along the data's edge, not left overhanging it by
   // the trim distance (about 5 spacings).
-  EXPECT_GT(r.clipped_facets, 0u);
+  EXPECT_GT(r.repairs.clipped_facets, 0u);
   const double margin = 1.5 * r.average_spacing;
   for (const Vec3& v : r.mesh.vertices) {
     EXPECT_GT(v[0], -margin);
@@ -307,10 +307,10 @@ TEST(Reconstruct, PointsOffARoundedEdgeStartNoDataFitRetry) {
   ReconstructOptions pif;
   pif.feature_mode = FeatureMode::None;
   const ReconstructResult r = reconstruct(sample(cube, 50000), pif);
-  std::printf("PIF cube: %zu points off, %zu against, max %.2f avg\n", r.off_data_points, r.off_data_against, r.max_data_distance / r.average_spacing);
-  EXPECT_GT(r.off_data_points, 0u);
-  EXPECT_EQ(r.off_data_against, 0u);
-  EXPECT_EQ(r.data_fit_retries, 0u);
+  std::printf("PIF cube: %zu points off, %zu against, max %.2f avg\n", r.data_fit.off_data_points, r.data_fit.off_data_against, r.data_fit.max_data_distance / r.average_spacing);
+  EXPECT_GT(r.data_fit.off_data_points, 0u);
+  EXPECT_EQ(r.data_fit.off_data_against, 0u);
+  EXPECT_EQ(r.data_fit.data_fit_retries, 0u);
 }
 
 // couplingdown sampled with seed 2 (50k points): the MST inverts the wall of
@@ -334,11 +334,11 @@ TEST(FeaturePreservingReconstruction, PointsOffTheMeshGetTheirNormalsFlippedAndA
   options.anchor_orientation = false;
   options.thin_part_vertices = false;
   const ReconstructResult r = reconstruct(cli_sample(part, 50000, 2), options);
-  EXPECT_EQ(r.enclosed_flipped_normals, 0u);
-  EXPECT_GE(r.off_data_points_before_retry, 10u);
-  EXPECT_GE(r.data_fit_retries, 1u);
-  EXPECT_GT(r.off_data_flips, 0u);
-  EXPECT_LE(4 * r.off_data_points, 3 * r.off_data_points_before_retry);
+  EXPECT_EQ(r.normals.enclosed_flipped_normals, 0u);
+  EXPECT_GE(r.data_fit.off_data_points_before_retry, 10u);
+  EXPECT_GE(r.data_fit.data_fit_retries, 1u);
+  EXPECT_GT(r.data_fit.off_data_flips, 0u);
+  EXPECT_LE(4 * r.data_fit.off_data_points, 3 * r.data_fit.off_data_points_before_retry);
   expect_valid_and_close(r.mesh, part, 0.011);  // 2.2 U; 3.17 U without the retry
 }
 
@@ -354,14 +354,14 @@ TEST(FeaturePreservingReconstruction, TheWindingRepairFlipsTheInvertedHoleWallBe
   options.anchor_orientation = false;
   const ReconstructResult repaired = reconstruct(cli_sample(part, 50000, 2), options);
   std::printf("couplingdown seed 2: %zu normals flipped by the winding repair, %zu points off the first mesh\n",
-              repaired.enclosed_flipped_normals, repaired.off_data_points_before_retry);
-  EXPECT_GE(repaired.enclosed_flipped_normals, 100u);
-  EXPECT_LT(repaired.off_data_points_before_retry, 10u);
-  EXPECT_EQ(repaired.data_fit_retries, 0u);
+              repaired.normals.enclosed_flipped_normals, repaired.data_fit.off_data_points_before_retry);
+  EXPECT_GE(repaired.normals.enclosed_flipped_normals, 100u);
+  EXPECT_LT(repaired.data_fit.off_data_points_before_retry, 10u);
+  EXPECT_EQ(repaired.data_fit.data_fit_retries, 0u);
   expect_valid_and_close(repaired.mesh, part, 1.5 / 200);
   options.anchor_orientation = true;
   const ReconstructResult anchored = reconstruct(cli_sample(part, 50000, 2), options);
-  EXPECT_LT(anchored.off_data_points_before_retry, 10u);
+  EXPECT_LT(anchored.data_fit.off_data_points_before_retry, 10u);
   expect_valid_and_close(anchored.mesh, part, 1.5 / 200);
 }
 
@@ -382,9 +382,9 @@ TEST(FeaturePreservingReconstruction, CouplingdownCornersAndThinWallTopsAreSnapp
   const ReconstructResult r = reconstruct(cli_sample(part, 50000, 1), options);
   const std::string messages = testing::internal::GetCapturedStderr();
   EXPECT_EQ(messages.find("features protection"), std::string::npos) << messages;
-  EXPECT_GE(r.snapped_corners, 2u);
-  EXPECT_GE(r.snapped_to_data, 5u);
-  EXPECT_LT(r.unsnapped_vertices, r.snapped_corners + r.snapped_to_data);
+  EXPECT_GE(r.repairs.snapped_corners, 2u);
+  EXPECT_GE(r.repairs.snapped_to_data, 5u);
+  EXPECT_LT(r.repairs.unsnapped_vertices, r.repairs.snapped_corners + r.repairs.snapped_to_data);
   expect_valid_and_close(r.mesh, part, 1.5 / 200);
 }
 
@@ -402,7 +402,7 @@ TEST(FeaturePreservingReconstruction, BladeOpenPlateGivesAnOpenMeshCloseToIt) {
   const SurfaceMesh blade = read_mesh(path);
   const ReconstructResult r = reconstruct(sample(blade, 50000), ReconstructOptions{});
   EXPECT_GT(r.boundary_edges, 0u);
-  EXPECT_GT(r.thin_part_vertices, 0u);
+  EXPECT_GT(r.implicit.thin_part_vertices, 0u);
   expect_valid_and_close(r.mesh, blade, 1.0 / 200, /*closed=*/false);
 }
 
@@ -415,7 +415,7 @@ TEST(FeaturePreservingReconstruction, SpoolFlangesKeepTheSurfaceClosed) {
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh spool = read_mesh(path);
   const ReconstructResult r = reconstruct(sample(spool, 50000), ReconstructOptions{});
-  EXPECT_GT(r.isotropic_cvcm_normals, 5000u);
+  EXPECT_GT(r.normals.isotropic_cvcm_normals, 5000u);
   EXPECT_EQ(r.boundary_edges, 0u);
   expect_valid_and_close(r.mesh, spool, 0.03);
 }
@@ -436,18 +436,18 @@ TEST(FeaturePreservingReconstruction, SpikyStarTakesJetNormalsAtItsTips) {
   const ReconstructResult r = reconstruct(cloud, options);
   // Automatic normals: the isotropic CVCM at the tips is replaced by jet
   // normals there, and the function agrees with its normals.
-  EXPECT_EQ(r.normal_origin, NormalOrigin::Cvcm);
-  EXPECT_GT(r.isotropic_cvcm_normals, 0u);
-  EXPECT_GT(r.normal_agreement, 0.9);
+  EXPECT_EQ(r.normals.normal_origin, NormalOrigin::Cvcm);
+  EXPECT_GT(r.normals.isotropic_cvcm_normals, 0u);
+  EXPECT_GT(r.implicit.normal_agreement, 0.9);
   expect_valid_and_close(r.mesh, star, 0.04);  // the spike tips are cut (reported as uncovered gaps)
   // Explicit CVCM normals (7.4 throughout) are not replaced. CGAL's Poisson
   // used to come out inverted as a whole on them (agreement near 0, once
   // taken for inconsistent normals); it is flipped back now.
   options.normal_source = NormalSource::Cvcm;
   const ReconstructResult c = reconstruct(cloud, options);
-  EXPECT_EQ(c.normal_origin, NormalOrigin::Cvcm);
-  EXPECT_EQ(c.isotropic_cvcm_normals, 0u);
-  EXPECT_GT(c.normal_agreement, 0.9);
+  EXPECT_EQ(c.normals.normal_origin, NormalOrigin::Cvcm);
+  EXPECT_EQ(c.normals.isotropic_cvcm_normals, 0u);
+  EXPECT_GT(c.implicit.normal_agreement, 0.9);
   expect_valid_and_close(c.mesh, star, 0.04);
 }
 
@@ -463,8 +463,8 @@ TEST(Reconstruct, PlateThinnerThanTheFacetsStaysClosed) {
   ReconstructOptions options;
   const ReconstructResult r = reconstruct(cloud, options);
   EXPECT_LT(0.02, 3 * r.average_spacing);
-  EXPECT_GT(r.thin_part_vertices, 0u);
-  EXPECT_GT(r.thin_points, cloud.size() / 2);
+  EXPECT_GT(r.implicit.thin_part_vertices, 0u);
+  EXPECT_GT(r.implicit.thin_points, cloud.size() / 2);
   EXPECT_EQ(check_topology(r.mesh, false).components, 1u);
   expect_valid_and_close(r.mesh, plate, 0.015);  // about two spacings, at the rim
 }
@@ -479,17 +479,17 @@ TEST(Reconstruct, InputNormalsAreCheckedBeforePoissonUsesThem) {
   ReconstructOptions options;  // the whole Chapter 7 pipeline, as in CubeKeepsTwelveSharpEdgesAndEightCorners
   options.delta = 6;
   const ReconstructResult kept = reconstruct(consistent, options);
-  EXPECT_EQ(kept.normal_origin, NormalOrigin::Input);
-  EXPECT_GT(kept.input_normal_agreement, 0.99);
+  EXPECT_EQ(kept.normals.normal_origin, NormalOrigin::Input);
+  EXPECT_GT(kept.normals.input_normal_agreement, 0.99);
   expect_valid_and_close(kept.mesh, cube, 0.005);
 
   PointSet flipped = consistent;  // the +x, +y and +z faces point inwards
   for (Vec3& n : flipped.normals)
     if (n[0] + n[1] + n[2] > 0.5) n = -1.0 * n;
   const ReconstructResult reoriented = reconstruct(flipped, options);
-  EXPECT_EQ(reoriented.normal_origin, NormalOrigin::InputReoriented);
-  EXPECT_GT(reoriented.input_normal_agreement, 0.3);
-  EXPECT_LT(reoriented.input_normal_agreement, 0.7);
+  EXPECT_EQ(reoriented.normals.normal_origin, NormalOrigin::InputReoriented);
+  EXPECT_GT(reoriented.normals.input_normal_agreement, 0.3);
+  EXPECT_LT(reoriented.normals.input_normal_agreement, 0.7);
   expect_valid_and_close(reoriented.mesh, cube, 0.005);
 
   // A slab tapering to a knife edge (about 11 degrees): an MST of PCA
@@ -500,14 +500,14 @@ TEST(Reconstruct, InputNormalsAreCheckedBeforePoissonUsesThem) {
   ReconstructOptions pif = options;
   pif.feature_mode = FeatureMode::None;
   const ReconstructResult knife = reconstruct(test::sample_with_normals(wedge, 20000, 3), pif);
-  EXPECT_EQ(knife.normal_origin, NormalOrigin::Input);
-  EXPECT_GT(knife.input_normal_agreement, 0.9);
+  EXPECT_EQ(knife.normals.normal_origin, NormalOrigin::Input);
+  EXPECT_GT(knife.normals.input_normal_agreement, 0.9);
 
   PointSet zero = consistent;
   for (Vec3& n : zero.normals) n = {0, 0, 0};
   const ReconstructResult estimated = reconstruct(zero, options);
-  EXPECT_TRUE(estimated.normals_estimated);
-  EXPECT_TRUE(estimated.input_normals_unusable);
+  EXPECT_TRUE(estimated.normals.normals_estimated);
+  EXPECT_TRUE(estimated.normals.input_normals_unusable);
   expect_valid_and_close(estimated.mesh, cube, 0.005);
 }
 
@@ -526,13 +526,13 @@ TEST(Reconstruct, SignRepairFlipsTheNormalsThePoissonFunctionContradicts) {
   ReconstructOptions options;
   options.feature_mode = FeatureMode::None;
   const ReconstructResult repaired = reconstruct(cloud, options);
-  EXPECT_EQ(repaired.normal_origin, NormalOrigin::Input);  // 97.5% agree with the MST: used as given
-  std::printf("sign repair: %zu inverted, %zu flipped\n", inverted, repaired.sign_repaired_normals);
-  EXPECT_GE(repaired.sign_repaired_normals, inverted - inverted / 50);
-  EXPECT_LE(repaired.sign_repaired_normals, inverted + inverted / 50);
+  EXPECT_EQ(repaired.normals.normal_origin, NormalOrigin::Input);  // 97.5% agree with the MST: used as given
+  std::printf("sign repair: %zu inverted, %zu flipped\n", inverted, repaired.normals.sign_repaired_normals);
+  EXPECT_GE(repaired.normals.sign_repaired_normals, inverted - inverted / 50);
+  EXPECT_LE(repaired.normals.sign_repaired_normals, inverted + inverted / 50);
   expect_valid_and_close(repaired.mesh, sphere, 0.005);
   options.repair_normal_signs = false;
-  EXPECT_EQ(reconstruct(cloud, options).sign_repaired_normals, 0u);
+  EXPECT_EQ(reconstruct(cloud, options).normals.sign_repaired_normals, 0u);
 }
 
 // The Poisson function is pulled towards the points with the full weight on
@@ -544,13 +544,13 @@ TEST(Reconstruct, NoisyCloudsTakeTheWeakerPoissonScreening) {
   ReconstructOptions options;
   options.delta = 4;
   const ReconstructResult clean = reconstruct(sample(cube, 20000), options);
-  EXPECT_DOUBLE_EQ(clean.poisson_screening, options.poisson_screening);
+  EXPECT_DOUBLE_EQ(clean.implicit.poisson_screening, options.poisson_screening);
   const ReconstructResult noisy = reconstruct(sample(cube, 20000, 0.01), options);
-  EXPECT_DOUBLE_EQ(noisy.poisson_screening, options.poisson_screening_noisy);
+  EXPECT_DOUBLE_EQ(noisy.implicit.poisson_screening, options.poisson_screening_noisy);
   EXPECT_LT(options.poisson_screening_noisy, options.poisson_screening);
   ReconstructOptions pif = options;
   pif.feature_mode = FeatureMode::None;
-  EXPECT_DOUBLE_EQ(reconstruct(sample(cube, 20000, 0.01), pif).poisson_screening, options.poisson_screening);
+  EXPECT_DOUBLE_EQ(reconstruct(sample(cube, 20000, 0.01), pif).implicit.poisson_screening, options.poisson_screening);
   ReconstructOptions bad = options;
   bad.poisson_screening_noisy = -1;
   EXPECT_THROW(reconstruct(sample(cube, 2000), bad), InvalidArgument);
