@@ -233,4 +233,22 @@ double estimated_area_from_spacing(std::size_t n, double average_spacing);
 ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& options = {},
                               const Progress& progress = {});
 
+/// The normals reconstruct() solves Poisson with, on their own: its prepare
+/// stage (the input's normals checked, the average spacing, the features of
+/// 7.2) and its normals stage (CVCM normals of 7.4 or jet/pca ones, the
+/// anchored tangent MST of A.8 and the orientation repairs beyond it).
+/// What follows in reconstruct() may still change some: the implicit
+/// stage's sign repair and its jet fallback for CVCM normals that Poisson
+/// contradicts.
+struct NormalsResult {
+  PointSet points;  ///< the input without duplicated points, with oriented unit normals
+  NormalsStats normals;
+  FeatureResult features;  ///< when extracted (graph only when given)
+  double average_spacing = 0;
+  std::vector<StageTiming> stages;
+};
+
+NormalsResult reconstruct_normals(const PointSet& input, const ReconstructOptions& options = {},
+                                  const Progress& progress = {});
+
 }  // namespace sharpmesh

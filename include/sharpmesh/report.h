@@ -17,6 +17,10 @@ namespace sharpmesh {
 /// (command, input, output, seconds; its stage list adds read and write).
 std::string reconstruct_report_json(const ReconstructResult& result, const ReconstructOptions& options);
 
+/// reconstruct_normals(): the parameters, the normals stage's counts, the
+/// features when extracted, the stages.
+std::string normals_report_json(const NormalsResult& result, const ReconstructOptions& options);
+
 /// `sharpmesh features --report` without the command line's own keys.
 std::string feature_report_json(const FeatureResult& result, const FeatureOptions& options, double diagonal);
 

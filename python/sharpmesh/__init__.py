@@ -12,6 +12,6 @@ cancels (sharpmesh.Cancelled). They release the GIL while they compute.
     sm.write_mesh("fandisk.ply", *result.mesh)
     print(len(result.sharp_edges), "feature polylines,", len(result.mesh.faces), "facets")
 """
-from ._types import Features, Mesh, PointCloud, Reconstruction
+from ._types import Features, Mesh, OrientedNormals, PointCloud, Reconstruction
 from ._core import *  # noqa: F401,F403
 from ._core import __version__  # noqa: F401

@@ -38,6 +38,14 @@ class Features(NamedTuple):
     report: dict
 
 
+class OrientedNormals(NamedTuple):
+    """The result of reconstruct_normals(): the cloud without duplicated
+    points, with the oriented unit normals reconstruct() starts Poisson
+    from, and a report of the normals stage."""
+    cloud: PointCloud
+    report: dict
+
+
 class Reconstruction(NamedTuple):
     """The result of reconstruct(): the mesh, the mesh edges that represent
     the protected features (polylines), the features extracted (None when

@@ -35,6 +35,23 @@ void bind_reconstruct(py::module_& m) {
          "ReconstructOptions; keywords override it (no_NAME=True turns a switch off):\n" +
          keyword_help(reconstruct_option_fields()))
             .c_str());
+  m.def("reconstruct_normals",
+        [](const DoubleArray& points, const py::object& point_normals, const py::object& options, bool no_features,
+           const py::object& progress, const py::kwargs& keywords) {
+          const PointSet set = to_point_set(points, point_normals);
+          ReconstructOptions o = options_from<ReconstructOptions>(options, keywords, reconstruct_option_fields());
+          o.feature_mode = no_features ? FeatureMode::None : FeatureMode::Extract;
+          ProgressBridge bridge(progress);
+          const NormalsResult r = without_gil(bridge, [&] { return reconstruct_normals(set, o, bridge.callback()); });
+          return py::module_::import("sharpmesh._types")
+              .attr("OrientedNormals")(make_point_cloud(r.points), json_report(normals_report_json(r, o)));
+        },
+        py::arg("points"), py::arg("point_normals") = py::none(), py::kw_only(), py::arg("options") = py::none(),
+        py::arg("no_features") = false, py::arg("progress") = py::none(),
+        "The oriented normals reconstruct() starts Poisson from, without the rest of the pipeline (its prepare and "
+         "normals stages: CVCM normals of 7.4 or jet/pca, the anchored tangent MST of A.8, the orientation repairs) "
+         "-> OrientedNormals(cloud, report). Given normals are checked and kept as reconstruct() keeps them. "
+         "Options and keywords as reconstruct()'s.");
 }
 
 }  // namespace sharpmesh::python

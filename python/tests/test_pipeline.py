@@ -118,6 +118,22 @@ def test_options_objects_and_keywords_agree(cube_cloud):
         sm.ReconstructOptions(spacing_k=2.5)
 
 
+def test_reconstruct_normals_points_a_cube_outwards_and_reports_the_stage(cube_cloud):
+    out = sm.reconstruct_normals(cube_cloud.points, threads=1)
+    assert isinstance(out, sm.OrientedNormals)
+    points, normals = out.cloud.points, out.cloud.normals
+    assert points.shape == normals.shape == cube_cloud.points.shape
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-6)
+    # Outwards from the cube's centre, except at a few edge points.
+    outward = np.einsum("ij,ij->i", normals, points - points.mean(axis=0)) > 0
+    assert outward.mean() > 0.995
+    assert out.report["counts"]["normal_source"] == "cvcm"
+    assert out.report["parameters"]["threads"] == 1
+    assert out.report["features"]["counts"]["polylines"] >= 12
+    jet = sm.reconstruct_normals(cube_cloud.points, no_features=True)
+    assert jet.report["counts"]["normal_source"] == "jet" and "features" not in jet.report
+
+
 def test_reconstruction_is_accurate_and_keeps_the_edges(cube, cube_cloud):
     result = sm.reconstruct(cube_cloud.points, delta=3.5)
     e = sm.evaluate(result.mesh, cube)

@@ -14,7 +14,19 @@
 namespace sharpmesh {
 namespace {
 
-ReconstructResult reconstruct_centred(const PointSet& input, const ReconstructOptions& options, const Progress& progress);
+/// The input recentred (core/recentering.h) without duplicated points, and
+/// the options in its frame.
+struct LocalInput {
+  detail::Recentering frame;
+  PointSet points;
+  ReconstructOptions options;
+  std::size_t duplicates = 0;
+};
+LocalInput recentre(const PointSet& input, const ReconstructOptions& options);
+
+PointSet prepare(PointSet input, const ReconstructOptions& options, const Progress& progress, ReconstructResult& result);
+bool normals_from_cvcm(const ReconstructOptions& options);
+ReconstructResult reconstruct_centred(PointSet input, const ReconstructOptions& options, const Progress& progress);
 ReconstructResult reconstruct_world(const PointSet& input, const ReconstructOptions& options, const Progress& progress);
 
 }  // namespace
@@ -75,23 +87,31 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
   return detail::run_with_threads(options.threads, [&] { return reconstruct_world(input, options, progress); });
 }
 
+NormalsResult reconstruct_normals(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
+  return detail::run_with_threads(options.threads, [&] {
+    LocalInput local = recentre(input, options);
+    ReconstructResult result;
+    PointSet points = prepare(std::move(local.points), local.options, progress, result);
+    if (result.normals.normals_estimated) {
+      StageTimer timer(result.stages, "normals");
+      points = detail::oriented_normals({points, local.options, progress}, normals_from_cvcm(local.options), result);
+    }
+    local.frame.to_world(points.points);
+    local.frame.to_world(result.features);
+    return NormalsResult{std::move(points), result.normals, std::move(result.features),
+                         local.frame.length_to_world(result.average_spacing), std::move(result.stages)};
+  });
+}
+
 namespace {
 
 /// Recentres the input, runs the stages and brings the results back.
 ReconstructResult reconstruct_world(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
-  check_point_set(input, 10, "reconstruction");
-  options.check(input.size());
-  const detail::Recentering frame(input.points);
-  PointSet local = input;
-  frame.to_local(local.points);
-  const std::size_t duplicates = remove_duplicate_points(local);
-  check_point_set(local, 10, "reconstruction (after removing duplicated points)");
-  options.check(local.size());
-  ReconstructOptions local_options = options;
-  frame.to_local(local_options.given_features);
-  ReconstructResult result = reconstruct_centred(local, local_options, progress);
+  LocalInput local = recentre(input, options);
+  const detail::Recentering& frame = local.frame;
+  ReconstructResult result = reconstruct_centred(std::move(local.points), local.options, progress);
   result.input_points = input.size();
-  result.duplicate_points = duplicates;
+  result.duplicate_points = local.duplicates;
   frame.to_world(result.mesh.vertices);
   frame.to_world(result.features);
   frame.to_world(result.meshing.feature_edges);
@@ -120,20 +140,39 @@ ReconstructResult reconstruct_world(const PointSet& input, const ReconstructOpti
   return result;
 }
 
-/// The stages of stages.h in order, on a recentred input.
-ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOptions& options, const Progress& progress) {
+LocalInput recentre(const PointSet& input, const ReconstructOptions& options) {
+  check_point_set(input, 10, "reconstruction");
+  options.check(input.size());
+  LocalInput local{detail::Recentering(input.points), input, options, 0};
+  local.frame.to_local(local.points.points);
+  local.duplicates = remove_duplicate_points(local.points);
+  check_point_set(local.points, 10, "reconstruction (after removing duplicated points)");
+  options.check(local.points.size());
+  local.frame.to_local(local.options.given_features);
+  return local;
+}
+
+/// Estimated normals CVCM (7.4) or jet/pca, as the options ask.
+bool normals_from_cvcm(const ReconstructOptions& options) {
+  return options.normal_source == NormalSource::Cvcm ||
+         (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
+}
+
+NormalOrigin estimated_origin(const ReconstructOptions& options) {
+  return options.normals.method == NormalMethod::Jet ? NormalOrigin::Jet : NormalOrigin::Pca;
+}
+
+/// The prepare stage: the input's own normals checked, the average spacing
+/// and the mesh size it gives (7.3.2), the features (7.2) and where the
+/// normals will come from. Returns the checked input.
+PointSet prepare(PointSet input, const ReconstructOptions& options, const Progress& progress, ReconstructResult& result) {
   using namespace detail;
-  ReconstructResult result;
-  PointSet checked;
   InputNormals input_normals = InputNormals::Used;
-  if (given.has_normals() && !options.recompute_normals && options.check_input_normals) {
+  if (input.has_normals() && !options.recompute_normals && options.check_input_normals) {
     StageTimer timer(result.stages, "normal check");
-    checked = given;
-    input_normals = check_input_normals(checked, options, result.normals.input_normal_agreement, progress);
-    if (input_normals == InputNormals::Unusable) checked.normals.clear();
+    input_normals = check_input_normals(input, options, result.normals.input_normal_agreement, progress);
+    if (input_normals == InputNormals::Unusable) input.normals.clear();
   }
-  const PointSet& input = checked.points.empty() ? given : checked;
-  const PipelineInput in{input, options, progress};
   result.input_points = input.size();
 
   {
@@ -156,19 +195,26 @@ ReconstructResult reconstruct_centred(const PointSet& given, const ReconstructOp
     result.features.graph.polylines = options.given_features;
   }
 
-  const bool cvcm = options.normal_source == NormalSource::Cvcm ||
-                    (options.normal_source == NormalSource::Automatic && options.feature_mode == FeatureMode::Extract);
   const bool needs_normals = !input.has_normals() || options.recompute_normals;
-  const NormalOrigin estimated = options.normals.method == NormalMethod::Jet ? NormalOrigin::Jet : NormalOrigin::Pca;
   result.normals.normal_origin = !needs_normals ? (input_normals == InputNormals::Reoriented ? NormalOrigin::InputReoriented : NormalOrigin::Input)
-                         : cvcm ? NormalOrigin::Cvcm
-                                : estimated;
+                                 : normals_from_cvcm(options) ? NormalOrigin::Cvcm
+                                                              : estimated_origin(options);
   result.normals.input_normals_unusable = input_normals == InputNormals::Unusable;
   result.normals.normals_estimated = needs_normals;
   result.used_points = input.size();
+  return input;
+}
 
+/// The stages of stages.h in order, on a recentred input.
+ReconstructResult reconstruct_centred(PointSet given, const ReconstructOptions& options, const Progress& progress) {
+  using namespace detail;
+  ReconstructResult result;
+  const PointSet input = prepare(std::move(given), options, progress, result);
+  const PipelineInput in{input, options, progress};
+  const double estimate = result.estimated_facets;
   ImplicitSolver solver(in, result);
-  ImplicitStage implicit = solve_implicit(in, solver, needs_normals, cvcm, estimated, result);
+  ImplicitStage implicit =
+      solve_implicit(in, solver, result.normals.normals_estimated, normals_from_cvcm(options), estimated_origin(options), result);
   mesh_surface(in, std::move(implicit.surface), implicit.oriented, estimate, result, "");
   FitStage fit = fit_and_retry(in, solver, implicit.oriented, estimate, result);
   snap_to_data(in, fit, result);

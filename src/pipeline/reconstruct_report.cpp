@@ -40,28 +40,32 @@ nlohmann::json protection_report(const ReconstructResult& r, const ReconstructOp
 
 /// "jet (cvcm fallback)", "pca (input normals unusable)": the origin with
 /// the reason it is not the expected one.
-std::string normal_source_text(const ReconstructResult& r) {
-  std::string text = to_string(r.normals.normal_origin);
-  if (r.normals.cvcm_fallback) text += " (cvcm fallback)";
-  if (r.normals.input_normals_unusable) text += " (input normals unusable)";
+std::string normal_source_text(const NormalsStats& n) {
+  std::string text = to_string(n.normal_origin);
+  if (n.cvcm_fallback) text += " (cvcm fallback)";
+  if (n.input_normals_unusable) text += " (input normals unusable)";
   return text;
 }
 
+nlohmann::json normals_counts(const NormalsStats& n) {
+  return {{"normals_estimated", n.normals_estimated},
+          {"normal_source", normal_source_text(n)},
+          {"input_normal_agreement", n.input_normal_agreement},
+          {"isotropic_cvcm_normals", n.isotropic_cvcm_normals},
+          {"anchored_normals", n.anchored_normals},
+          {"patch_flipped_normals", n.patch_flipped_normals},
+          {"enclosed_flipped_normals", n.enclosed_flipped_normals},
+          {"sharpened_normals", n.sharpened_normals},
+          {"sign_repaired_normals", n.sign_repaired_normals}};
+}
+
 nlohmann::json counts_report(const ReconstructResult& r) {
-  return {{"input_points", r.input_points},
+  nlohmann::json counts = normals_counts(r.normals);
+  counts.update(nlohmann::json{{"input_points", r.input_points},
           {"duplicate_points", r.duplicate_points},
           {"points_used", r.used_points},
           {"poisson_points", r.implicit.poisson_points},
           {"normal_agreement", r.implicit.normal_agreement},
-          {"normals_estimated", r.normals.normals_estimated},
-          {"normal_source", normal_source_text(r)},
-          {"input_normal_agreement", r.normals.input_normal_agreement},
-          {"isotropic_cvcm_normals", r.normals.isotropic_cvcm_normals},
-          {"anchored_normals", r.normals.anchored_normals},
-          {"patch_flipped_normals", r.normals.patch_flipped_normals},
-          {"enclosed_flipped_normals", r.normals.enclosed_flipped_normals},
-          {"sharpened_normals", r.normals.sharpened_normals},
-          {"sign_repaired_normals", r.normals.sign_repaired_normals},
           {"vertices", r.mesh.vertices.size()},
           {"facets", r.mesh.faces.size()},
           {"thin_part_vertices", r.implicit.thin_part_vertices},
@@ -78,7 +82,8 @@ nlohmann::json counts_report(const ReconstructResult& r) {
           {"trimmed_facets", r.repairs.trimmed_facets},
           {"dataless_facets", r.repairs.dataless_facets},
           {"clipped_facets", r.repairs.clipped_facets},
-          {"boundary_edges", r.boundary_edges}};
+          {"boundary_edges", r.boundary_edges}});
+  return counts;
 }
 
 nlohmann::json data_fit_report(const ReconstructResult& r) {
@@ -136,6 +141,18 @@ nlohmann::json reconstruct_report(const ReconstructResult& r, const ReconstructO
 
 std::string reconstruct_report_json(const ReconstructResult& result, const ReconstructOptions& options) {
   return detail::reconstruct_report(result, options).dump();
+}
+
+std::string normals_report_json(const NormalsResult& result, const ReconstructOptions& options) {
+  nlohmann::json counts = detail::normals_counts(result.normals);
+  counts["points_used"] = result.points.size();
+  const double diagonal = bounding_box(result.points.points).diagonal();
+  nlohmann::json report = {{"parameters", detail::options_json(options, reconstruct_option_fields())},
+                           {"derived", {{"diagonal", diagonal}, {"average_spacing", detail::length_json(result.average_spacing, diagonal)}}},
+                           {"counts", counts},
+                           {"stages", detail::stages_json(result.stages)}};
+  if (options.feature_mode == FeatureMode::Extract) report["features"] = detail::feature_report(result.features, options.features, diagonal);
+  return report.dump();
 }
 
 }  // namespace sharpmesh

@@ -594,6 +594,33 @@ TEST(Reconstruct, OneThreadGivesTheSameMeshAsEveryCore) {
   EXPECT_THROW(reconstruct(points, options), InvalidArgument);
 }
 
+// The normals stage on its own gives the normals reconstruct() starts from:
+// oriented outwards on a closed part away from the origin (the stage runs
+// recentred and returns the input's own coordinates), and given consistent
+// normals kept as they are.
+TEST(Reconstruct, NormalsStageAloneOrientsAClosedPartOutwards) {
+  PointSet exact = test::sample_with_normals(test::chamfered_cube_mesh(0.3), 20000, 5);
+  for (Vec3& p : exact.points) p = p + Vec3{100, -50, 20};
+  PointSet bare = exact;
+  bare.normals.clear();
+  const NormalsResult r = reconstruct_normals(bare);
+  EXPECT_EQ(r.normals.normal_origin, NormalOrigin::Cvcm);
+  EXPECT_FALSE(r.features.graph.polylines.empty());
+  ASSERT_EQ(r.points.size(), exact.size());
+  ASSERT_EQ(r.points.normals.size(), exact.size());
+  std::size_t outward = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    EXPECT_LT(norm(r.points.points[i] - exact.points[i]), 1e-9) << i;
+    EXPECT_NEAR(norm(r.points.normals[i]), 1.0, 1e-9);
+    outward += dot(r.points.normals[i], exact.normals[i]) > 0 ? 1 : 0;
+  }
+  EXPECT_GT(outward, exact.size() * 995 / 1000);
+  const NormalsResult given = reconstruct_normals(exact);
+  EXPECT_EQ(given.normals.normal_origin, NormalOrigin::Input);
+  EXPECT_FALSE(given.normals.normals_estimated);
+  for (std::size_t i = 0; i < exact.size(); ++i) EXPECT_GT(dot(given.points.normals[i], exact.normals[i]), 0.999) << i;
+}
+
 TEST(Reconstruct, RejectsTooFewPoints) {
   PointSet points;
   points.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
