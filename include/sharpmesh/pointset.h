@@ -176,8 +176,13 @@ std::vector<signed char> neighbour_confirmed_votes(const PointSet& cloud, const 
 /// whole face beyond an acute crease, whose consistent normals have a
 /// negative dot product). `unreliable`: points whose normal line is
 /// uncertain (crease points); they do not vote and follow their neighbours.
-/// `spacing`: the average spacing. Returns the number of normals flipped.
-std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uint32_t>& unreliable, double spacing, int k = 18);
+/// `spacing`: the average spacing. `anchored`: empty, or nonzero for the
+/// points whose sign is known (the anchors an anchored MST grew from): a
+/// patch holding anchored points keeps the sign most of them have, the
+/// crease votes decide only the others, and anchored points never flip.
+/// Returns the number of normals flipped.
+std::size_t repair_inverted_patches(PointSet& points, const std::vector<std::uint32_t>& unreliable, double spacing, int k = 18,
+                                    const std::vector<signed char>& anchored = {});
 
 /// Beyond the thesis: flips the regions of normals whose outer side the rest
 /// of the cloud encloses, by the cloud's generalized winding number (about 1

@@ -105,7 +105,8 @@ PointSet oriented_normals(const PipelineInput& in, bool from_cvcm, ReconstructRe
   // The crease points' jet normals carried the MST across the creases;
   // the anisotropic CVCM normals vote on it (patch_orientation.cpp).
   if (from_cvcm && automatic)
-    result.normals.patch_flipped_normals = repair_inverted_patches(oriented, isotropic, result.average_spacing, options.orientation.k);
+    result.normals.patch_flipped_normals =
+        repair_inverted_patches(oriented, isotropic, result.average_spacing, options.orientation.k, anchors);
   // Regions the rest of the surface encloses on their outer side
   // (enclosed_orientation.cpp); not on the PIF baseline (--no-features).
   if (automatic && options.repair_enclosed_normals)

@@ -9,7 +9,7 @@ model=$1 binary=$2 cache=$3
 here=$(cd "$(dirname "$0")" && pwd)
 python=/usr/bin/python3
 mkdir -p "$cache"
-"$python" "$here/generate.py" "$cache/models" --per-family 1 --open 1 --only "$model" >/dev/null
+"$python" "$here/generate.py" "$cache/models" --only "$model" >/dev/null
 # A new build is checked afresh: run.py keeps the results a work folder holds.
 rm -rf "$cache/work-$model"
 exec "$python" "$here/run.py" "$binary" "$cache/models" "$cache/work-$model" --models "$model" --points 50000 --deltas 5

@@ -141,6 +141,28 @@ TEST(FeatureGraph, CurvedButCleanCloudsAreNotDenoised) {
   EXPECT_GT(extract_features(sample_mesh(cheese, sampling)).denoise_k, 0);
 }
 
+// A plate 1.5 average spacings thick: every neighbourhood of the noise
+// estimate holds both faces, which one plane fit reads as noise of about
+// half the thickness (then no polylines, no orientation anchors, an open
+// mesh). Two sheets fit it: the clean plate reads clean, a noisy one still
+// noisy. (Without the automatic denoising, which decides on its own.)
+TEST(FeatureDetection, AThinPlateReadsCleanAndANoisyOneNoisy) {
+  SurfaceMesh plate = test::cube_mesh(1.0);
+  const double half_thickness = 0.0095;  // 1.5 spacings of 30,000 points
+  for (Vec3& v : plate.vertices) v[2] *= half_thickness;
+  FeatureOptions options;
+  options.denoise_k = 0;
+  const FeatureResult clean = extract_features(sample(plate, 30000), options);
+  EXPECT_NEAR(2 * half_thickness / clean.average_spacing, 1.5, 0.3);
+  EXPECT_LT(clean.noise_estimate, 0.05 * clean.average_spacing);
+  SampleOptions noisy;
+  noisy.count = 30000;
+  noisy.seed = 4;
+  noisy.noise = 0.002;
+  const FeatureResult rough = extract_features(sample_mesh(plate, noisy), options);
+  EXPECT_GT(rough.noise_estimate, 0.2 * rough.average_spacing);
+}
+
 TEST(FeatureGraph, ForcedDenoisingRunsOnePassAndKeepsTheEdges) {
   const SurfaceMesh cube = test::cube_mesh(1.0);
   FeatureOptions options;

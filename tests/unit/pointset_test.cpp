@@ -473,6 +473,25 @@ TEST(Normals, InvertedPatchBeyondAnAcuteCreaseIsFlippedBack) {
 
   PointSet consistent = truth;
   EXPECT_EQ(repair_inverted_patches(consistent, creases, spacing), 0u);
+
+  // Anchored points (signs known, as after an anchored MST) pin their
+  // patch: anchors on the three right faces leave the slanted face to the
+  // crease votes, which flip it back; anchors on the slanted face keep it.
+  std::vector<signed char> right_faces(truth.size(), 0), slanted_face(truth.size(), 0);
+  for (std::uint32_t i = 0; i < truth.size(); i += 50) {
+    if (crease[i]) continue;
+    (dot(truth.normals[i], Vec3{1, 1, 1}) > 1.5 ? slanted_face : right_faces)[i] = 1;
+  }
+  PointSet voted = inverted;
+  repair_inverted_patches(voted, creases, spacing, 18, right_faces);
+  EXPECT_LT(flipped_fraction(voted, truth), 0.03);
+  PointSet pinned = inverted;
+  repair_inverted_patches(pinned, creases, spacing, 18, slanted_face);
+  for (std::uint32_t i = 0; i < truth.size(); ++i) {
+    if (!crease[i] && dot(truth.normals[i], Vec3{1, 1, 1}) > 1.5) {
+      ASSERT_LT(dot(pinned.normals[i], truth.normals[i]), 0) << i;
+    }
+  }
   PointSet cube = test::sample_with_normals(test::cube_mesh(1.0), 20000, 3);
   EXPECT_EQ(repair_inverted_patches(cube, {}, average_spacing(cube)), 0u);
 }
