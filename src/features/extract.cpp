@@ -160,9 +160,9 @@ double estimate_shifted_noise(const std::vector<Vec3>& points, const detail::Knn
 
 // Noise level, spacing, r, and Algorithm 1 on the convolved VCM.
 // The noise is the residual over R / 3, to two sheets where a neighbourhood
-// holds both faces of a plate (sheets_residual: a corpus plate 1.6 spacings
-// thick read as 0.65 spacings of noise, lost its polylines and its
-// orientation anchors and came out open). Where it reads the cloud as noisy
+// holds both faces of a plate (sheets_residual: one plane reads a plate 1.6
+// spacings thick as 0.65 spacings of noise, which costs it its polylines
+// and its orientation anchors). Where it reads the cloud as noisy
 // it is capped at twice the shifted estimate: where bars, ribs or flanges
 // are narrower than R / 3 every centred neighbourhood spans several faces
 // (a cube frame whose bars are 5 spacings wide read as 1.9 spacings of

@@ -59,11 +59,11 @@ double steepness(const Vec3& u, const Vec3& na, const Vec3& nb) { return std::ma
 // patch of each connected group: the strongest evidence first, as the MST
 // does with single edges (3torus.off, a polyhedral triple torus: the MST
 // left 39% of the reliable normals inverted, patch by patch; 0.2% after).
-// Pinned patches (their anchors known the sign) start the tree all at once
+// Pinned patches (their anchors know the sign) start the tree all at once
 // and keep their sign: on parts thinner than the chords, chords reach
-// across the material and their votes are not the two-plane model's
-// (a generated ribbed plate, 1.5 spacings thick: 0.6% of its anchored
-// normals inverted before the votes, 31% after).
+// across the material and their votes are not the two-plane model's (on a
+// generated ribbed plate 1.5 spacings thick they invert a third of the
+// normals the anchors set right; docs/design-notes.md).
 std::map<std::uint32_t, int> patch_signs(const std::map<std::uint32_t, std::vector<std::pair<std::uint32_t, double>>>& around,
                                          const std::vector<std::uint32_t>& patch, const std::vector<char>& reliable,
                                          const std::map<std::uint32_t, int>& pinned) {
