@@ -90,6 +90,7 @@ ReconstructResult reconstruct(const PointSet& input, const ReconstructOptions& o
 NormalsResult reconstruct_normals(const PointSet& input, const ReconstructOptions& options, const Progress& progress) {
   return detail::run_with_threads(options.threads, [&] {
     LocalInput local = recentre(input, options);
+    local.options.max_facets = 0;  // no facets are made: a small delta is no reason to refuse
     ReconstructResult result;
     PointSet points = prepare(std::move(local.points), local.options, progress, result);
     if (result.normals.normals_estimated) {

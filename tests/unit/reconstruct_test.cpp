@@ -615,6 +615,9 @@ TEST(Reconstruct, NormalsStageAloneOrientsAClosedPartOutwards) {
     outward += dot(r.points.normals[i], exact.normals[i]) > 0 ? 1 : 0;
   }
   EXPECT_GT(outward, exact.size() * 995 / 1000);
+  ReconstructOptions tiny_facets;
+  tiny_facets.delta = 1e-4;  // refused by reconstruct() (max_facets), not by the normals alone
+  EXPECT_EQ(reconstruct_normals(bare, tiny_facets).points.size(), exact.size());
   const NormalsResult given = reconstruct_normals(exact);
   EXPECT_EQ(given.normals.normal_origin, NormalOrigin::Input);
   EXPECT_FALSE(given.normals.normals_estimated);
