@@ -10,6 +10,7 @@
 #include "cgal_messages.h"
 #include "cli.h"
 #include "sharpmesh/errors.h"
+#include "sharpmesh/version.h"
 
 namespace sharpmesh::io {
 void remove_pending_temporaries() noexcept;
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
                "Lengths are relative: mesh sizes in multiples of the average spacing, distances in\n"
                "fractions of the bounding-box diagonal (see each command's --help)."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "sharpmesh 0.1.0");
+  app.set_version_flag("--version", "sharpmesh " SHARPMESH_VERSION);
   std::vector<cli::Command> commands = {cli::add_info(app), cli::add_clean(app), cli::add_sample(app), cli::add_eval(app),
                                         cli::add_reconstruct(app), cli::add_features(app), cli::add_eval_features(app), cli::add_make_scene(app),
                                         cli::add_stereo(app), cli::add_eval_stereo(app), cli::add_view(app), cli::add_render(app)};

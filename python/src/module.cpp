@@ -2,11 +2,12 @@
 // file per pipeline stage (io, pointset, features, reconstruct, eval, view).
 #include "convert.h"
 #include "sharpmesh/errors.h"
+#include "sharpmesh/version.h"
 
 PYBIND11_MODULE(_core, m) {
   namespace py = pybind11;
   using namespace sharpmesh;
-  m.attr("__version__") = "0.1.0";
+  m.attr("__version__") = SHARPMESH_VERSION;
   // Most specific last: pybind11 tries the translators registered last first.
   // Bad input and bad arguments are also ValueErrors, as Python users expect.
   static py::exception<Error> error(m, "Error", PyExc_RuntimeError);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sharpmesh/errors.h"
+#include "sharpmesh/version.h"
 #include "sharpmesh/view.h"
 #include "view/assets.h"
 
@@ -139,7 +140,7 @@ std::string viewer_page(const ViewScene& scene, const ViewOptions& options) {
     replace_all(title, from, to);
 
   std::string page = view_assets::kTemplate;
-  replace_all(page, "@VERSION@", "0.1.0");
+  replace_all(page, "@VERSION@", SHARPMESH_VERSION);
   replace_all(page, "@TITLE@", title);
   replace_all(page, "@BODY_CLASS@", options.bare ? "bare" : "");
   // Data and script last: they are large and must not be scanned for placeholders.
