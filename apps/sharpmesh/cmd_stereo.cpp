@@ -92,8 +92,11 @@ Command add_stereo(CLI::App& app) {
                     model.cameras.size(), ts.input, model.tracks.size(), ts.merged, ts.removed_distance, ts.removed_cone,
                     result.removed_track_photo);
       printer.message(line);
+      std::snprintf(line, sizeof line, "  scale: half diagonal %s of the tracks' 1-99%% extent (%s with all of them; %zu tracks far outside it)",
+                    format_number(ts.half_diagonal).c_str(), format_number(ts.raw_half_diagonal).c_str(), ts.far_tracks);
+      printer.message(line);
       std::snprintf(line, sizeof line,
-                    "  soup: %zu triangles (%zu unique), -%zu grazing, -%zu anamorphic, -%zu visibility, -%zu of %zu occluded tracks, -%zu photo (%zu tested) -> %zu",
+                    "  soup: %zu triangles (%zu unique), -%zu grazing, -%zu anamorphic, -%zu visibility, -%zu triangles of %zu occluded tracks, -%zu photo (%zu tested) -> %zu",
                     result.soup_triangles, result.soup_unique, fs.removed_grazing, fs.removed_anamorphic, fs.removed_visibility,
                     fs.removed_occluded, fs.occluded_tracks,
                     fs.removed_photo, fs.photo_tested, fs.output);

@@ -66,8 +66,16 @@ StereoModel read_stereo_model(const std::string& path);
 /// What `sharpmesh stereo MODEL [--tracks FILE]` reads: cameras from MODEL
 /// (as read_stereo_model, or a folder of Strecha .camera files, which needs
 /// `tracks_path`); tracks from MODEL, or from `tracks_path` (a tracks PLY, or
-/// COLMAP's fused.ply when fused.ply.vis is next to it). Validated.
+/// COLMAP's fused.ply when fused.ply.vis is next to it). Validated, then put
+/// in canonical order (canonical_order), so the mesh made from it does not
+/// depend on how the files happened to list cameras and tracks.
 StereoModel load_stereo_model(const std::string& model_path, const std::string& tracks_path = "");
+
+/// Sorts the cameras by image name and the tracks by position (then by their
+/// views, pixels and colour), each track's views ascending with their pixels, and
+/// renumbers the views: the same scene gives the same model whatever order
+/// its files listed it in (text or binary COLMAP models, other exporters).
+void canonical_order(StereoModel& model);
 
 /// The images of a model: MODEL/images, MODEL/../images, MODEL/../../images,
 /// else the model's own folder.

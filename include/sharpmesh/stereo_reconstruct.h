@@ -53,7 +53,12 @@ struct TrackPreprocessStats {
   std::size_t removed_cone = 0;      ///< cone angle below t2 (includes single-view tracks)
   bool cone_filter_skipped = false;  ///< dense points, see cone_angle_on_dense_points
   std::size_t output = 0;
-  double half_diagonal = 0;          ///< beta, of the input tracks
+  /// beta: half the diagonal of the input tracks' 1-99% extent per axis
+  /// (robust_bounding_box), the unit of t1; far outliers cannot stretch it.
+  double half_diagonal = 0;
+  double raw_half_diagonal = 0;      ///< of the input tracks' full bounding box
+  /// Input tracks farther than beta outside the 1-99% box: far outliers.
+  std::size_t far_tracks = 0;
 };
 
 /// Merges tracks within t1 of an earlier kept track (union of the views,

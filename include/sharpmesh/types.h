@@ -44,6 +44,10 @@ struct BoundingBox {
 };
 
 BoundingBox bounding_box(const std::vector<Vec3>& points);
+/// The box from the `fraction` to the 1 - `fraction` quantile of each
+/// coordinate: the extent of the bulk of the points, which a few far
+/// outliers cannot stretch (the raw box of real tracks can be twice as large).
+BoundingBox robust_bounding_box(const std::vector<Vec3>& points, double fraction);
 
 // Small vector helpers used across the library and the tools.
 inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }

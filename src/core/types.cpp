@@ -26,6 +26,23 @@ BoundingBox bounding_box(const std::vector<Vec3>& points) {
   return box;
 }
 
+BoundingBox robust_bounding_box(const std::vector<Vec3>& points, double fraction) {
+  BoundingBox box;
+  if (points.empty()) return box;
+  const std::size_t last = points.size() - 1;
+  const auto low = static_cast<std::size_t>(std::floor(fraction * static_cast<double>(last)));
+  const std::size_t high = last - low;
+  std::vector<double> values(points.size());
+  for (int axis = 0; axis < 3; ++axis) {
+    for (std::size_t i = 0; i < points.size(); ++i) values[i] = points[i][axis];
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(low), values.end());
+    box.min[axis] = values[low];
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(high), values.end());
+    box.max[axis] = values[high];
+  }
+  return box;
+}
+
 void PointSet::keep_if(const std::vector<bool>& keep) {
   if (keep.size() != points.size()) throw std::logic_error("PointSet::keep_if: flag count differs from point count");
   std::size_t out = 0;

@@ -9,13 +9,13 @@ std::string stereo_report_json(const StereoReconstruction& r, const StereoRecons
   const TrackPreprocessStats& ts = r.tracks;
   const SoupFilterStats& fs = r.filters;
   const nlohmann::json report = {
-      {"units", "lengths in data units; merge distance as a fraction of the input tracks' half diagonal, size, distance and max_hole of "
+      {"units", "lengths in data units; merge distance as a fraction of the input tracks' half diagonal (of their 1-99% extent per axis), size, distance and max_hole of "
                 "the filtered soup's (derived.soup_half_diagonal)"},
       {"parameters", options_json(o, stereo_option_fields())},
-      {"derived", {{"half_diagonal", ts.half_diagonal}, {"soup_half_diagonal", r.meshing.half_diagonal}}},
+      {"derived", {{"half_diagonal", ts.half_diagonal}, {"raw_half_diagonal", ts.raw_half_diagonal}, {"soup_half_diagonal", r.meshing.half_diagonal}}},
       {"counts",
        {{"views", model.cameras.size()},
-        {"tracks", {{"input", ts.input}, {"merged", ts.merged}, {"removed_distance", ts.removed_distance},
+        {"tracks", {{"input", ts.input}, {"far", ts.far_tracks}, {"merged", ts.merged}, {"removed_distance", ts.removed_distance},
                     {"removed_cone_angle", ts.removed_cone}, {"cone_filter_skipped_fused", ts.cone_filter_skipped},
                     {"removed_photo", r.removed_track_photo}, {"kept", model.tracks.size()}}},
         {"depth_maps", {{"contour_tracks", r.contour_tracks}, {"contour_edges", r.contour_edges}}},

@@ -9,6 +9,11 @@
 
 namespace sharpmesh {
 
+namespace {
+/// The tracks' extent runs from the 1% to the 99% quantile of each coordinate.
+constexpr double kExtentQuantile = 0.01;
+}  // namespace
+
 void TrackPreprocessOptions::check() const {
   if (!(merge_distance >= 0 && merge_distance < 1))
     throw InvalidArgument("the merge distance t1 must be in [0, 1) (fraction of the half diagonal), got " + format_number(merge_distance));
@@ -40,8 +45,18 @@ TrackPreprocessStats preprocess_tracks(StereoModel& model, const TrackPreprocess
   std::vector<Vec3> positions;
   positions.reserve(model.tracks.size());
   for (const Track& t : model.tracks) positions.push_back(t.position);
-  stats.half_diagonal = 0.5 * bounding_box(positions).diagonal();
-  if (!(stats.half_diagonal > 0)) throw InvalidInput("all tracks are at one position");
+  stats.raw_half_diagonal = 0.5 * bounding_box(positions).diagonal();
+  if (!(stats.raw_half_diagonal > 0)) throw InvalidInput("all tracks are at one position");
+  // The scene's scale from the bulk of the tracks: a far cluster of a few
+  // outliers doubles a real model's raw box, and t1 with it.
+  const BoundingBox bulk = robust_bounding_box(positions, kExtentQuantile);
+  stats.half_diagonal = 0.5 * bulk.diagonal();
+  if (!(stats.half_diagonal > 0)) stats.half_diagonal = stats.raw_half_diagonal;
+  for (const Vec3& p : positions) {
+    double outside = 0;
+    for (int axis = 0; axis < 3; ++axis) outside = std::max({outside, bulk.min[axis] - p[axis], p[axis] - bulk.max[axis]});
+    if (outside > stats.half_diagonal) ++stats.far_tracks;
+  }
 
   report_progress(progress, "merging tracks", 0.0);
   stats.merged = merge_tracks(model.tracks, options.merge_distance * stats.half_diagonal);

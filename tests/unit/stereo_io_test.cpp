@@ -3,6 +3,7 @@
 // recorded pixel within 0.5 px), plus malformed files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -274,4 +275,43 @@ TEST(Tracks, PlyRoundTripWithLabels) {
   EXPECT_EQ(labels, (std::vector<bool>{false, true, false}));
   // The same file is an ordinary point cloud for the other tools.
   EXPECT_EQ(read_point_set(dir.path("t.ply")).size(), 3u);
+}
+
+// The same scene listed in another order (cameras, tracks, each track's
+// observations reversed, views renumbered) becomes the same model.
+TEST(CanonicalOrder, AnyListingOfTheSameSceneBecomesTheSameModel) {
+  StereoModel model = read_colmap_model(kColmap + "/text");
+  ASSERT_GE(model.cameras.size(), 2u);
+  StereoModel reversed = model;
+  const auto n = static_cast<std::uint32_t>(model.cameras.size());
+  std::reverse(reversed.cameras.begin(), reversed.cameras.end());
+  std::reverse(reversed.tracks.begin(), reversed.tracks.end());
+  for (Track& t : reversed.tracks) {
+    for (std::uint32_t& v : t.views) v = n - 1 - v;
+    std::reverse(t.views.begin(), t.views.end());
+    std::reverse(t.pixels.begin(), t.pixels.end());
+  }
+  canonical_order(model);
+  canonical_order(reversed);
+  ASSERT_EQ(model.cameras.size(), reversed.cameras.size());
+  for (std::size_t i = 0; i < model.cameras.size(); ++i) {
+    EXPECT_EQ(model.cameras[i].image_name, reversed.cameras[i].image_name);
+    EXPECT_EQ(model.cameras[i].translation, reversed.cameras[i].translation);
+  }
+  for (std::size_t i = 1; i < model.cameras.size(); ++i) EXPECT_LT(model.cameras[i - 1].image_name, model.cameras[i].image_name);
+  ASSERT_EQ(model.tracks.size(), reversed.tracks.size());
+  for (std::size_t i = 0; i < model.tracks.size(); ++i) {
+    EXPECT_EQ(model.tracks[i].position, reversed.tracks[i].position);
+    EXPECT_EQ(model.tracks[i].views, reversed.tracks[i].views);
+    EXPECT_EQ(model.tracks[i].pixels, reversed.tracks[i].pixels);
+    EXPECT_TRUE(std::is_sorted(model.tracks[i].views.begin(), model.tracks[i].views.end()));
+  }
+  // Each pixel still belongs to its view: the tracks project onto them.
+  for (const Track& t : model.tracks)
+    for (std::size_t k = 0; k < t.pixels.size(); ++k) {
+      Vec2 projected;
+      ASSERT_TRUE(model.cameras[t.views[k]].project(t.position, projected));
+      EXPECT_NEAR(projected[0], t.pixels[k][0], 0.5);
+      EXPECT_NEAR(projected[1], t.pixels[k][1], 0.5);
+    }
 }
