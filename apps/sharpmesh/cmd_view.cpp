@@ -2,12 +2,14 @@
 // the mesh, its feature polylines, the input points and the distance to a
 // reference, as an offline HTML page or a PNG made by headless Chromium.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/io.h"
+#include "sharpmesh/stereo_io.h"
 #include "sharpmesh/view.h"
 
 namespace sharpmesh::cli {
@@ -18,7 +20,9 @@ struct SceneOptions {
   double distance_scale = 0;
   std::size_t max_points = 500'000;
   std::string wireframe = "auto";
+  std::string model, camera, up = "z";
   ViewOptions view;
+  std::vector<Camera> model_cameras;  ///< of --model, in the order of view.cameras
 };
 
 void add_scene_options(CLI::App& sub, SceneOptions& o) {
@@ -35,10 +39,41 @@ void add_scene_options(CLI::App& sub, SceneOptions& o) {
   sub.add_option("--wireframe", o.wireframe, "Draw the mesh edges: auto (below 300,000 facets), on or off")
       ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
   sub.add_flag("--bare", o.view.bare, "No text overlay (for figures)");
+  sub.add_option("--model", o.model, "Cameras to look through: a stereo model (COLMAP folder, .out, .nvm); a button each on the page");
+  sub.add_option("--camera", o.camera, "Start looking through this camera of --model (its image name)");
+  sub.add_option("--up", o.up, "The world's up for the named views: x, y, z, -x, -y, -z, or cameras (the --model cameras' mean up)")
+      ->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z", "cameras"}))->capture_default_str();
+}
+
+/// The --model cameras, --camera and --up into the view options.
+void load_cameras(SceneOptions& o) {
+  if (o.model.empty()) {
+    if (!o.camera.empty()) throw InvalidArgument("--camera needs --model (the stereo model the camera belongs to)");
+    if (o.up == "cameras") throw InvalidArgument("--up cameras needs --model");
+  } else {
+    StereoModel model = read_stereo_model(o.model);
+    canonical_order(model);
+    o.model_cameras = model.cameras;
+    for (const Camera& c : model.cameras) o.view.cameras.push_back(view_camera(c));
+    if (!o.camera.empty()) {
+      const auto it = std::find_if(model.cameras.begin(), model.cameras.end(), [&](const Camera& c) { return c.image_name == o.camera; });
+      if (it == model.cameras.end()) throw InvalidArgument(o.model + ": no camera '" + o.camera + "' (cameras are named by their image)");
+      o.view.camera = static_cast<int>(it - model.cameras.begin());
+    }
+  }
+  if (o.up == "cameras") {
+    o.view.up = cameras_up(o.model_cameras);
+  } else {
+    const double sign = o.up[0] == '-' ? -1 : 1;
+    const int axis = o.up.back() - 'x';
+    o.view.up = {0, 0, 0};
+    o.view.up[axis] = sign;
+  }
 }
 
 ViewScene load_scene(SceneOptions& o, ProgressPrinter& printer) {
   o.view.wireframe = o.wireframe == "auto" ? -1 : o.wireframe == "on" ? 1 : 0;
+  load_cameras(o);
   ViewScene scene;
   scene.title = std::filesystem::path(o.mesh).filename().string();
   scene.mesh = read_mesh(o.mesh);
@@ -68,6 +103,7 @@ nlohmann::json scene_report(const char* command, const SceneOptions& o, const Vi
           {"output", o.output},
           {"parameters",
            {{"features", o.features}, {"points", o.points}, {"reference", o.reference}, {"view", o.view.view},
+            {"model", o.model}, {"camera", o.camera}, {"up", o.up},
             {"wireframe", o.wireframe}, {"bare", o.view.bare}, {"distance_scale", o.distance_scale}}},
           {"counts",
            {{"facets", scene.mesh.faces.size()}, {"vertices", scene.mesh.vertices.size()},
@@ -111,8 +147,12 @@ Command add_render(CLI::App& app) {
   sub->add_option("--height", render->height, "Picture height, pixels")->capture_default_str();
   sub->add_option("--browser", render->browser, "Browser binary (default: $SHARPMESH_BROWSER, else chromium on PATH)");
   sub->add_option("--timeout", render->timeout_seconds, "Give up after this many seconds")->capture_default_str();
+  auto photo = std::make_shared<bool>(false);
+  auto images = std::make_shared<std::string>();
+  sub->add_flag("--photo", *photo, "Put the --camera's photograph left of the rendering, at the same height");
+  sub->add_option("--images", *images, "Folder of the model's photographs (default: as `stereo` finds them)");
   common->add_to(*sub);
-  auto run = [o, render, common] {
+  auto run = [o, render, common, photo, images, sub] {
     check_output(o->output, "picture");
     check_output(common->report, "report");
     if (std::filesystem::path(o->output).extension() != ".png") throw InvalidArgument(o->output + ": render writes .png pictures");
@@ -120,6 +160,15 @@ Command add_render(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     ProgressPrinter printer(common->quiet);
     const ViewScene scene = load_scene(*o, printer);
+    if (o->view.camera >= 0) {
+      // The picture takes the camera's shape unless a height is given.
+      const Camera& camera = o->model_cameras[static_cast<std::size_t>(o->view.camera)];
+      if (sub->count("--height") == 0) render->height = std::max(16, static_cast<int>(std::lround(render->width * double(camera.height) / camera.width)));
+      if (*photo)
+        render->beside = (std::filesystem::path(images->empty() ? default_image_folder(o->model) : *images) / camera.image_name).string();
+    } else if (*photo) {
+      throw InvalidArgument("--photo needs --camera (whose photograph to show)");
+    }
     if (!common->quiet) printer.message("render: starting the headless browser");
     render_png(o->output, scene, o->view, *render);
     if (!common->quiet)

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sharpmesh/stereo.h"
 #include "sharpmesh/types.h"
 
 namespace sharpmesh {
@@ -24,8 +25,32 @@ struct ViewScene {
   double distance_scale = 0;
 };
 
+/// A camera to look through, in world coordinates: an input camera of a
+/// stereo model (view_camera), so a mesh can be seen as that photo saw it.
+struct ViewCamera {
+  std::string name;
+  Vec3 position{0, 0, 0};
+  Vec3 forward{0, 0, 1};  ///< unit viewing direction
+  Vec3 up{0, -1, 0};      ///< unit, the image's up
+  double vertical_fov_degrees = 50;
+  double aspect = 4.0 / 3.0;  ///< image width / height
+};
+
+/// A stereo camera as a ViewCamera (COLMAP's y runs down the image, so up is
+/// -y of the camera). The principal point is taken at the image centre.
+ViewCamera view_camera(const Camera& camera);
+
+/// The up direction the cameras agree on (mean of their image-up vectors),
+/// for scenes whose world is not z-up; z when there are no cameras.
+Vec3 cameras_up(const std::vector<Camera>& cameras);
+
 struct ViewOptions {
   std::string view = "iso";  ///< iso, front, back, left, right, top, bottom
+  /// The world's up for the named views (unit length; z for CAD and LiDAR).
+  Vec3 up{0, 0, 1};
+  /// Cameras offered on the page (a button each; keys c/C cycle them).
+  std::vector<ViewCamera> cameras;
+  int camera = -1;  ///< start looking through cameras[camera] (-1: the named view)
   /// Draw every mesh edge faintly (-1: automatic, on below 300,000 facets).
   int wireframe = -1;
   bool bare = false;         ///< no text overlay (figures)
@@ -44,6 +69,9 @@ struct RenderOptions {
   /// Browser binary; empty: $SHARPMESH_BROWSER, else chromium or chromium-browser on PATH.
   std::string browser;
   double timeout_seconds = 120;
+  /// A picture (for example the photograph of the camera looked through)
+  /// placed left of the rendering, scaled to its height; empty: none.
+  std::string beside;
   void check() const;
 };
 

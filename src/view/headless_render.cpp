@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -131,6 +133,11 @@ void render_png(const std::string& png_path, const ViewScene& scene, const ViewO
   render.check();
   const std::string browser = find_browser(render);
   const std::string page = viewer_page(scene, view);
+  cv::Mat beside;
+  if (!render.beside.empty()) {
+    beside = cv::imread(render.beside, cv::IMREAD_COLOR);
+    if (beside.empty()) throw InvalidInput(render.beside + ": not a readable picture");
+  }
   ScratchFolder scratch;
   const fs::path html = scratch.path / "page.html", shot = scratch.path / "shot.png";
   {
@@ -161,7 +168,18 @@ void render_png(const std::string& png_path, const ViewScene& scene, const ViewO
   cv::meanStdDev(image, mean, deviation);
   if (deviation[0] < 2.0) throw NumericalFailure("render: the picture is blank");
   io::AtomicFile file(png_path);
-  file.write(png);
+  if (beside.empty()) {
+    file.write(png);
+  } else {
+    const cv::Mat shot_image = cv::imdecode(cv::Mat(1, int(png.size()), CV_8U, const_cast<char*>(png.data())), cv::IMREAD_COLOR);
+    cv::Mat scaled, both;
+    const double scale = static_cast<double>(shot_image.rows) / beside.rows;
+    cv::resize(beside, scaled, cv::Size(std::max(1, static_cast<int>(std::lround(beside.cols * scale))), shot_image.rows), 0, 0, cv::INTER_AREA);
+    cv::hconcat(scaled, shot_image, both);
+    std::vector<std::uint8_t> encoded;
+    if (!cv::imencode(".png", both, encoded)) throw NumericalFailure("render: the picture could not be encoded");
+    file.write(encoded.data(), encoded.size());
+  }
   file.commit();
 }
 

@@ -79,6 +79,32 @@ void check_scene(const ViewScene& scene) {
 void ViewOptions::check() const {
   if (std::find(std::begin(kViews), std::end(kViews), view) == std::end(kViews))
     throw InvalidArgument("view: unknown view '" + view + "' (iso, front, back, left, right, top or bottom)");
+  if (!(std::abs(norm(up) - 1) < 1e-6)) throw InvalidArgument("view: the up direction must be a unit vector");
+  if (camera < -1 || camera >= static_cast<int>(cameras.size()))
+    throw InvalidArgument("view: camera " + format_number(camera) + " of " + format_number(cameras.size()));
+  for (const ViewCamera& c : cameras)
+    if (!(c.vertical_fov_degrees > 0 && c.vertical_fov_degrees < 180 && c.aspect > 0))
+      throw InvalidArgument("view: camera '" + c.name + "' has no usable field of view");
+}
+
+ViewCamera view_camera(const Camera& camera) {
+  ViewCamera v;
+  v.name = camera.image_name;
+  v.position = camera.center();
+  // Rows of R are the camera axes in world coordinates.
+  const Mat3& r = camera.rotation;
+  v.forward = {r[2][0], r[2][1], r[2][2]};
+  v.up = {-r[1][0], -r[1][1], -r[1][2]};
+  v.vertical_fov_degrees = 2 * std::atan(0.5 * camera.height / camera.fy) * 180 / M_PI;
+  v.aspect = static_cast<double>(camera.width) / camera.height;
+  return v;
+}
+
+Vec3 cameras_up(const std::vector<Camera>& cameras) {
+  Vec3 sum{0, 0, 0};
+  for (const Camera& c : cameras) sum = sum + view_camera(c).up;
+  const double length = norm(sum);
+  return length > 0 ? (1 / length) * sum : Vec3{0, 0, 1};
 }
 
 bool viewer_available() { return view_assets::kScript[0] != '\0'; }
@@ -99,6 +125,8 @@ std::string viewer_page(const ViewScene& scene, const ViewOptions& options) {
   nlohmann::json data = {
       {"title", scene.title.empty() ? "mesh" : scene.title},
       {"view", options.view},
+      {"up", options.up},
+      {"camera", options.camera},
       {"diagonal", diagonal},
       {"center", center},
       {"wireframe", options.wireframe < 0 ? mesh.faces.size() < 300'000 : options.wireframe > 0},
@@ -117,6 +145,13 @@ std::string viewer_page(const ViewScene& scene, const ViewOptions& options) {
     data["features"] = {{"positions", base64(shifted(segments, center))},
                         {"polylines", scene.features.size()},
                         {"segments", segments.size() / 2}};
+  }
+  if (!options.cameras.empty()) {
+    nlohmann::json cameras = nlohmann::json::array();
+    for (const ViewCamera& c : options.cameras)
+      cameras.push_back({{"name", c.name}, {"position", c.position - center}, {"forward", c.forward}, {"up", c.up},
+                         {"fov", c.vertical_fov_degrees}, {"aspect", c.aspect}});
+    data["cameras"] = cameras;
   }
   if (!scene.points.empty())
     data["points"] = {{"positions", base64(shifted(scene.points, center))}, {"count", scene.points.size()}};

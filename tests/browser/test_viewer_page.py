@@ -96,3 +96,34 @@ def test_render_fails_cleanly_without_a_browser(fandisk_page, tmp_path):
     assert run.returncode == 2
     assert "browser" in run.stderr.strip().splitlines()[-1]
     assert not out.exists()
+
+
+def silhouette_overlap(render_png, photo_png):
+    """Intersection over union of what the rendering draws and what the photo shows below its sky."""
+    image = np.asarray(Image.open(render_png).convert("RGB")).astype(int)
+    photo = np.asarray(Image.open(photo_png).convert("RGB").resize(image.shape[1::-1])).astype(int)
+    drawn = np.abs(image - BACKGROUND_RGB).sum(axis=2) > 30
+    sky = (photo[..., 2] > photo[..., 0] + 20) & (photo[..., 2] >= photo[..., 1])  # make-scene's sky is blue
+    return (drawn & ~sky).sum() / (drawn | ~sky).sum()
+
+
+def test_render_through_an_input_camera_sees_what_its_photo_saw(tmp_path):
+    scene = tmp_path / "scene"
+    subprocess.run([CLI, "make-scene", str(scene), "--views", "4", "--samples", "2000", "-q"], check=True)
+    names = sorted(p.name for p in (scene / "images").iterdir())
+    shot = tmp_path / "through.png"
+    subprocess.run([CLI, "render", str(scene / "ground_truth.ply"), "--model", str(scene / "sparse"), "--camera", names[1],
+                    "--bare", "--wireframe", "off", "--width", "640", "-o", str(shot), "-q"], check=True)
+    assert Image.open(shot).size == (640, 480)  # the camera's 320 x 240 shape
+    overlaps = {name: silhouette_overlap(shot, scene / "images" / name) for name in names}
+    assert overlaps[names[1]] > 0.98, overlaps
+    assert all(overlaps[names[1]] > overlaps[other] + 0.02 for other in names if other != names[1]), overlaps
+    # With its photograph beside it, at the same height.
+    pair = ARTIFACTS / "render-camera-beside-photo.png"
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    subprocess.run([CLI, "render", str(scene / "ground_truth.ply"), "--model", str(scene / "sparse"), "--camera", names[1],
+                    "--photo", "--width", "640", "-o", str(pair), "-q"], check=True)
+    assert Image.open(pair).size == (1280, 480)
+    run = subprocess.run([CLI, "render", str(scene / "ground_truth.ply"), "--model", str(scene / "sparse"), "--camera", "nope.png",
+                          "-o", str(tmp_path / "no.png")], capture_output=True, text=True)
+    assert run.returncode == 2 and "nope.png" in run.stderr and not (tmp_path / "no.png").exists()

@@ -110,7 +110,7 @@ function overlay(data) {
   }
   const info = document.getElementById('info');
   info.innerHTML = rows.join('<br>');
-  document.getElementById('help').textContent = 'drag: rotate · right-drag: pan · wheel: zoom · w: wireframe · p: points · 1-7: views';
+  document.getElementById('help').textContent = 'drag: rotate · right-drag: pan · wheel: zoom · w: wireframe · p: points · 1-7: views' + (data.cameras ? ' · c/C: cameras' : '');
 }
 
 function main() {
@@ -136,17 +136,56 @@ function main() {
   overlay(data);
 
   const controls = new OrbitControls(camera, canvas);
+  // The named views are given for z up; `data.up` turns them to the world's up.
+  const worldUp = new THREE.Vector3(...data.up).normalize();
+  const toWorld = new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 0, 1), worldUp);
   function setView(name) {
-    const dir = new THREE.Vector3(...(VIEWS[name] || VIEWS.iso)).normalize();
+    const dir = new THREE.Vector3(...(VIEWS[name] || VIEWS.iso)).normalize().applyQuaternion(toWorld);
+    camera.fov = 30;
+    camera.updateProjectionMatrix();
     const distance = 0.5 * data.diagonal / Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) * 0.92;
     camera.position.copy(dir.multiplyScalar(distance));
-    if (name === 'top' || name === 'bottom') camera.up.set(0, 1, 0); else camera.up.set(0, 0, 1);
+    if (name === 'top' || name === 'bottom') camera.up.set(0, 1, 0).applyQuaternion(toWorld); else camera.up.copy(worldUp);
     controls.target.set(0, 0, 0);
     camera.lookAt(0, 0, 0);
     controls.update();
   }
+  // Looking through an input camera: its centre, direction, up and field of view.
+  const cameras = data.cameras || [];
+  let current = -1;
+  function setCamera(i) {
+    current = (i + cameras.length) % cameras.length;
+    const c = cameras[current];
+    camera.fov = c.fov;
+    camera.updateProjectionMatrix();
+    camera.position.set(...c.position);
+    camera.up.set(...c.up);
+    const forward = new THREE.Vector3(...c.forward);
+    // Orbit about the point straight ahead at the depth of the mesh's centre.
+    const depth = Math.max(-camera.position.dot(forward), 0.1 * data.diagonal);
+    const target = camera.position.clone().addScaledVector(forward, depth);
+    controls.target.copy(target);
+    camera.lookAt(target);
+    controls.update();
+    const label = document.getElementById('camera-name');
+    if (label) label.textContent = `camera: ${c.name}`;
+  }
+  if (cameras.length > 0) {
+    const bar = document.createElement('div');
+    bar.id = 'cameras';
+    const label = document.createElement('div');
+    label.id = 'camera-name';
+    bar.appendChild(label);
+    cameras.forEach((c, i) => {
+      const button = document.createElement('button');
+      button.textContent = c.name;
+      button.addEventListener('click', () => { setCamera(i); render(); });
+      bar.appendChild(button);
+    });
+    document.getElementById('info').appendChild(bar);
+  }
   const hashView = new URLSearchParams(location.hash.slice(1)).get('view');
-  setView(hashView || data.view);
+  if (data.camera >= 0 && !hashView) setCamera(data.camera); else setView(hashView || data.view);
 
   function render() {
     renderer.render(scene, camera);
@@ -165,6 +204,7 @@ function main() {
     if (e.key === 'w') wire.visible = !wire.visible;
     else if (e.key === 'p' && points) points.visible = !points.visible;
     else if (e.key >= '1' && e.key <= String(names.length)) setView(names[Number(e.key) - 1]);
+    else if ((e.key === 'c' || e.key === 'C') && cameras.length > 0) setCamera(current + (e.key === 'c' ? 1 : -1));
     else return;
     render();
   });
