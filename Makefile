@@ -49,6 +49,7 @@ bench: data
 	@bench/scans $(BUILD_DIR)
 	@bench/corpus_generated $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)
+	@bench/laz $(BUILD_DIR)
 	@bench/stereo_study $(BUILD_DIR)
 
 clean:

@@ -2,14 +2,31 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <mutex>
 
 #include "sharpmesh/errors.h"
 #include "sharpmesh/io.h"
+#include "sharpmesh/las.h"
 
 namespace sharpmesh::cli {
+
+void add_classes_option(CLI::App& app, std::vector<int>& classes) {
+  app.add_option("--classes", classes, "LAS/LAZ input: keep the points of these ASPRS classes only (e.g. 2,6: ground and buildings)")
+      ->delimiter(',')->check(CLI::Range(0, 255));
+}
+
+PointSet read_cloud(const std::string& path, const std::vector<int>& classes) {
+  if (classes.empty()) return read_point_set(path);
+  std::string ext = path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".las" && ext != ".laz") throw InvalidArgument("--classes needs a .las or .laz input (" + path + " has no classes)");
+  PointSet points = read_las_points(path, classes);
+  if (points.empty()) throw InvalidInput(path + ": no point has any of the classes given with --classes");
+  return points;
+}
 
 void CommonOptions::add_to(CLI::App& app, bool with_report) {
   app.add_option("--threads", threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();

@@ -32,6 +32,12 @@ struct Command {
   std::shared_ptr<CommonOptions> common;
 };
 
+/// `--classes 2,6`: the LAS classes of a LAS/LAZ input to keep (ground and
+/// buildings, say); real LiDAR needs vegetation and noise left out.
+void add_classes_option(CLI::App& app, std::vector<int>& classes);
+/// Reads the input cloud, keeping `classes` only when given (LAS/LAZ only).
+PointSet read_cloud(const std::string& path, const std::vector<int>& classes);
+
 Command add_info(CLI::App& app);
 Command add_clean(CLI::App& app);
 Command add_sample(CLI::App& app);

@@ -13,6 +13,7 @@ namespace sharpmesh::cli {
 Command add_clean(CLI::App& app) {
   struct Options {
     std::string input, output;
+    std::vector<int> classes;
     double outlier_percentage = -1;
     int outlier_k = 24;
     double outlier_sigmas = -1;
@@ -33,7 +34,8 @@ Command add_clean(CLI::App& app) {
   auto o = std::make_shared<Options>();
   auto common = std::make_shared<CommonOptions>();
   CLI::App* sub = app.add_subcommand("clean", "Point-set toolbox (thesis App. A): outliers, simplification, smoothing, normals");
-  sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las)")->required();
+  sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las, .laz)")->required();
+  add_classes_option(*sub, o->classes);
   sub->add_option("-o,--output", o->output, "Output point cloud (.ply binary, or .xyz)")->required();
   auto g1 = "1. Outlier removal";
   sub->add_option("--outliers", o->outlier_percentage, "Remove this % of points with the largest average squared kNN distance (App. A.4; e.g. 5)")
@@ -93,7 +95,7 @@ Command add_clean(CLI::App& app) {
     PointSet points;
     {
       StageTimer stage(stages, "read");
-      points = read_point_set(o->input);
+      points = read_cloud(o->input, o->classes);
     }
     check_point_set(points, 1, o->input.c_str());
     CleanStats stats;

@@ -14,13 +14,15 @@ namespace sharpmesh::cli {
 Command add_features(CLI::App& app) {
   struct Options {
     std::string input, output, edge_points;
+    std::vector<int> classes;
     FeatureOptions features;
     bool ascii = false;
   };
   auto o = std::make_shared<Options>();
   auto common = std::make_shared<CommonOptions>();
   CLI::App* sub = app.add_subcommand("features", "Sharp-edge polylines and junctions of a point cloud (thesis 7.2)");
-  sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las)")->required();
+  sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las, .laz)")->required();
+  add_classes_option(*sub, o->classes);
   sub->add_option("-o,--output", o->output, "Output polylines (CGAL text format: n x1 y1 z1 ... per line)")->required();
   sub->add_option("--edge-points", o->edge_points, "Write every point with its class, edge direction and eigenvalue ratios (.ply)");
   sub->add_flag("--ascii", o->ascii, "Write --edge-points as ASCII PLY");
@@ -32,7 +34,7 @@ Command add_features(CLI::App& app) {
     check_output(common->report, "report");
     o->features.check();
     const auto start = std::chrono::steady_clock::now();
-    const PointSet points = read_point_set(o->input);
+    const PointSet points = read_cloud(o->input, o->classes);
     ProgressPrinter printer(common->quiet);
     const FeatureResult result = extract_features(points, o->features, printer.callback());
     write_polylines(o->output, result.graph.polylines);

@@ -2,7 +2,10 @@
 #include <cstdio>
 
 #include "cli.h"
+#include <filesystem>
+
 #include "sharpmesh/io.h"
+#include "sharpmesh/las.h"
 #include "sharpmesh/pointset.h"
 
 namespace sharpmesh::cli {
@@ -11,22 +14,43 @@ Command add_info(CLI::App& app) {
   struct Options {
     std::string input;
     int k = 6;
+    bool no_spacing = false;
   };
   auto options = std::make_shared<Options>();
   auto common = std::make_shared<CommonOptions>();
   CLI::App* sub = app.add_subcommand("info", "Point count, bounding box, average spacing and attributes of a point cloud");
-  sub->add_option("CLOUD", options->input, "Point cloud (.ply, .xyz, .pwn, .off, .las)")->required();
+  sub->add_option("CLOUD", options->input, "Point cloud (.ply, .xyz, .pwn, .off, .las, .laz)")->required();
+  sub->add_flag("--no-spacing", options->no_spacing, "Skip the average spacing (a k-nearest-neighbour pass over all points)");
   sub->add_option("-k,--k", options->k, "Neighbours for the average spacing (thesis 7.3.2: 6)")->check(CLI::PositiveNumber)->capture_default_str();
   common->add_to(*sub);
   auto run = [options, common] {
     check_output(common->report, "report");
     const auto start = std::chrono::steady_clock::now();
-    const PointSet points = read_point_set(options->input);
+    const std::string ext = std::filesystem::path(options->input).extension().string();
+    const bool lidar = ext == ".las" || ext == ".laz" || ext == ".LAS" || ext == ".LAZ";
+    // LAS/LAZ: one pass over the chunks gives the points and the class histogram.
+    PointSet points;
+    LasInfo las;
+    std::vector<std::uint64_t> classes(256, 0);
+    const auto read_start = std::chrono::steady_clock::now();
+    if (lidar) {
+      LasReader reader(options->input);
+      las = reader.info();
+      for (std::size_t c = 0; c < reader.chunk_count(); ++c) {
+        LasPoints chunk = reader.read_chunk(c);
+        for (std::uint8_t k : chunk.classification) ++classes[k];
+        points.points.insert(points.points.end(), chunk.positions.begin(), chunk.positions.end());
+        points.colors.insert(points.colors.end(), chunk.colors.begin(), chunk.colors.end());
+      }
+    } else {
+      points = read_point_set(options->input);
+    }
+    const double read_seconds = seconds_since(read_start);
     ProgressPrinter printer(common->quiet);
     check_point_set(points, 1, options->input.c_str());
     const BoundingBox box = bounding_box(points.points);
     double spacing = -1;
-    if (points.size() > static_cast<std::size_t>(options->k)) spacing = average_spacing(points, options->k, printer.callback());
+    if (!options->no_spacing && points.size() > static_cast<std::size_t>(options->k)) spacing = average_spacing(points, options->k, printer.callback());
     if (!common->quiet) {
       std::printf("file:            %s\n", options->input.c_str());
       std::printf("points:          %zu\n", points.size());
@@ -36,8 +60,22 @@ Command add_info(CLI::App& app) {
       std::printf("diagonal:        %g\n", box.diagonal());
       if (spacing >= 0)
         std::printf("average spacing: %g (k = %d; %.3g of the diagonal)\n", spacing, options->k, spacing / box.diagonal());
-      else
+      else if (!options->no_spacing)
         std::printf("average spacing: n/a (fewer than k + 1 = %d points)\n", options->k + 1);
+      if (lidar) {
+        std::printf("LAS:             version %d.%d, point format %d, %u-byte records\n", las.version_major, las.version_minor,
+                    las.point_format, unsigned(las.record_length));
+        if (las.compressed)
+          std::printf("LAZ:             LASzip %s, %zu chunks of %u points\n", las.laszip_version.c_str(), las.chunks, las.chunk_size);
+        std::printf("scale, offset:   [%g %g %g], [%g %g %g]\n", las.scale[0], las.scale[1], las.scale[2], las.offset[0], las.offset[1],
+                    las.offset[2]);
+        std::printf("header box:      [%g %g %g] - [%g %g %g]\n", las.bounds.min[0], las.bounds.min[1], las.bounds.min[2], las.bounds.max[0],
+                    las.bounds.max[1], las.bounds.max[2]);
+        std::printf("classes:        ");
+        for (int c = 0; c < 256; ++c)
+          if (classes[c] > 0) std::printf(" %d: %llu", c, static_cast<unsigned long long>(classes[c]));
+        std::printf("\n");
+      }
     }
     nlohmann::json report = {{"command", "info"},
                              {"input", options->input},
@@ -46,7 +84,18 @@ Command add_info(CLI::App& app) {
                              {"normals", points.has_normals()},
                              {"colors", points.has_colors()},
                              {"bounding_box", {{"min", box.min}, {"max", box.max}, {"diagonal", box.diagonal()}}},
+                             {"read_seconds", read_seconds},
                              {"seconds", seconds_since(start)}};
+    if (lidar) {
+      nlohmann::json histogram = nlohmann::json::object();
+      for (int c = 0; c < 256; ++c)
+        if (classes[c] > 0) histogram[std::to_string(c)] = classes[c];
+      report["las"] = {{"version", std::to_string(las.version_major) + "." + std::to_string(las.version_minor)},
+                       {"point_format", las.point_format}, {"record_length", las.record_length}, {"compressed", las.compressed},
+                       {"laszip_version", las.laszip_version}, {"chunk_size", las.chunk_size}, {"chunks", las.chunks},
+                       {"scale", las.scale}, {"offset", las.offset},
+                       {"header_bounds", {{"min", las.bounds.min}, {"max", las.bounds.max}}}, {"classes", histogram}};
+    }
     if (spacing >= 0) report["average_spacing"] = length_json(spacing, box.diagonal());
     write_report(common->report, report);
   };

@@ -13,6 +13,7 @@ namespace sharpmesh::cli {
 Command add_reconstruct(CLI::App& app) {
   struct Options {
     std::string input, output, features_file, sharp_edges_out;
+    std::vector<int> classes;
     bool no_features = false, allow_invalid = false, ascii = false;
     double time_limit = 0;
     ReconstructOptions reconstruct;
@@ -21,7 +22,8 @@ Command add_reconstruct(CLI::App& app) {
   auto common = std::make_shared<CommonOptions>();
   CLI::App* sub = app.add_subcommand(
       "reconstruct", "Point cloud -> mesh with sharp edges: features, normals, Poisson implicit function, protected Delaunay refinement (thesis Ch. 7)");
-  sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las); normals are used if present")->required();
+  sub->add_option("CLOUD", o->input, "Input point cloud (.ply, .xyz, .pwn, .off, .las, .laz); normals are used if present")->required();
+  add_classes_option(*sub, o->classes);
   sub->add_option("-o,--output", o->output, "Output mesh (.ply, .off, .obj)")->required();
   auto* no_features = sub->add_flag("--no-features", o->no_features,
                                     "Plain Delaunay refinement of the Poisson implicit function (the thesis's PIF baseline)");
@@ -50,7 +52,7 @@ Command add_reconstruct(CLI::App& app) {
     PointSet points;
     {
       StageTimer timer(io_stages, "read");
-      points = read_point_set(o->input);
+      points = read_cloud(o->input, o->classes);
       if (options.feature_mode == FeatureMode::Given) options.given_features = read_polylines(o->features_file);
     }
     ProgressPrinter printer(common->quiet);

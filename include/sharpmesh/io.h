@@ -14,7 +14,8 @@ namespace sharpmesh {
 /// Reads a point set from .ply (ASCII or binary, float or double, optional
 /// normals nx/ny/nz and colours red/green/blue), .xyz/.pwn (3 or 6 columns,
 /// '#' comments and blank lines allowed), .off (vertices; faces ignored) or
-/// .las (1.2-1.4, uncompressed, scale and offset applied). .laz is refused.
+/// .las/.laz (LAS 1.0-1.4, LAZ point formats 0-3; scale and offset applied;
+/// sharpmesh/las.h reads their classes and returns).
 PointSet read_point_set(const std::string& path);
 
 /// Reads a triangle mesh from .off, .ply, .obj or .stl (ASCII or binary).

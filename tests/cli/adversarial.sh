@@ -152,6 +152,10 @@ PY
                   "--poisson-spacing -1" "--poisson-spacing 5" "--poisson-spacing nan" "--poisson-screening -1" "--poisson-screening nan" "--poisson-screening-noisy -1"; do
       contract out.ply $bin reconstruct c.xyz -o out.ply --no-features $option
     done
+    for option in "--classes 2" "--classes 300" "--classes -1" "--classes x"; do  # classes only exist in LAS/LAZ, 0-255
+      contract out.ply $bin reconstruct c.xyz -o out.ply --no-features $option
+      contract out.ply $bin clean c.xyz -o out.ply $option
+    done
     contract out.ply $bin sample "$data/meshes/cube.off" -o out.ply -n 0
     contract "" $bin eval "$data/meshes/cube.off" --reference "$data/meshes/cube.off" --sharp-angle -5
     contract "" $bin eval-features /dev/null --reference "$data/meshes/cube.off" --tolerance -1 ;;

@@ -235,7 +235,7 @@ PY
     cp keep.png sc/images/view_001.png
     expect_error 1 "view_002.png" "m.ply" $bin stereo sc -o m.ply
     expect_error 1 "view_002.png" "m.ply" $bin stereo sc -o m.ply --images sc/images ;;
-  laz-refused) printf 'LASF' > c.laz; expect_error 1 "LAZ" "out.ply" $bin clean c.laz -o out.ply ;;
+  laz-broken) printf 'LASF' > c.laz; expect_error 1 "c.laz: not a LAS file" "out.ply" $bin clean c.laz -o out.ply ;;
   features)
     $bin sample "$data/meshes/cube.off" -n 20000 --seed 3 -o s.ply -q || fail "sample failed"
     $bin features s.ply -o p.polylines.txt --edge-points e.ply --report r.json -q || fail "features failed"

@@ -114,6 +114,32 @@ std::string las_seed(int format, int record_length) {
   return data;
 }
 
+/// A LAZ file of three points (format 1, LASzip pointwise, no chunk table):
+/// the first record raw, then `stream` as the arithmetic-coded rest.
+std::string laz_seed(const std::string& stream) {
+  std::string data = las_seed(1, 28);
+  data.resize(227);
+  auto put = [&](std::size_t offset, const auto& value) { std::memcpy(data.data() + offset, &value, sizeof value); };
+  put(96, std::uint32_t{227 + 54 + 46});
+  put(100, std::uint32_t{1});
+  data[104] = static_cast<char>(0x81);
+  std::string vlr(54, '\0');
+  vlr.replace(2, 14, "laszip encoded");
+  const std::uint16_t record_id = 22204, length = 46;
+  std::memcpy(vlr.data() + 18, &record_id, 2);
+  std::memcpy(vlr.data() + 20, &length, 2);
+  std::string payload(46, '\0');
+  const std::uint16_t fields[] = {1, 0};  // pointwise, arithmetic coder
+  std::memcpy(payload.data(), fields, 4);
+  payload[4] = 2, payload[5] = 2;
+  const std::uint16_t items[] = {2, 6, 20, 2, 7, 8, 2};  // count, then (type, size, version) per item
+  std::memcpy(payload.data() + 32, items, sizeof items);
+  std::string record(28, '\0');
+  record[14] = 9;  // return 1 of 1
+  record[15] = 2;
+  return data + vlr + payload + record + stream;
+}
+
 std::string binary_stl_seed() {
   std::string data(80, ' ');
   const std::uint32_t count = 2;
@@ -130,7 +156,7 @@ std::string binary_stl_seed() {
 
 const std::vector<std::string>& reader_names() {
   static const std::vector<std::string> names = {"ply",         "xyz",           "off",        "obj",     "stl",
-                                                 "las",         "polylines",     "tracks_ply", "colmap_text",
+                                                 "las",         "laz",           "polylines",     "tracks_ply", "colmap_text",
                                                  "colmap_binary", "colmap_vis", "strecha",    "bundler", "nvm"};
   return names;
 }
@@ -160,6 +186,8 @@ void read_single(const std::string& reader, const std::vector<std::string>& part
     read_mesh(write("in.stl", 0));
   } else if (reader == "las") {
     read_point_set(write("in.las", 0));
+  } else if (reader == "laz") {
+    read_point_set(write("in.laz", 0));
   } else if (reader == "polylines") {
     read_polylines(write("in.polylines.txt", 0));
   } else if (reader == "tracks_ply") {
@@ -246,6 +274,11 @@ std::vector<std::string> seed_inputs(const std::string& reader) {
   } else if (reader == "las") {
     seeds.push_back(las_seed(0, 20));
     seeds.push_back(las_seed(2, 26));
+  } else if (reader == "laz") {
+    seeds.push_back(laz_seed(std::string(16, '\0')));
+    std::string bytes(256, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>((i * 37 + 11) & 0xFF);
+    seeds.push_back(laz_seed(bytes));
   } else if (reader == "polylines") {
     seeds.push_back(file_of("p.txt", [&](const std::string& f) {
       write_polylines(f, {Polyline{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, Polyline{{0, 0, 1}, {0, 0, 2}}});
