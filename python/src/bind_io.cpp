@@ -1,6 +1,7 @@
 // Reading and writing point clouds, meshes and polylines (sharpmesh/io.h).
 #include "convert.h"
 #include "sharpmesh/io.h"
+#include "sharpmesh/las.h"
 
 namespace sharpmesh::python {
 namespace {
@@ -35,16 +36,17 @@ PointSet to_point_set(const DoubleArray& points, const py::object& normals) {
 }
 
 void bind_io(py::module_& m) {
-  m.def("read_points", [](const std::string& path) {
+  m.def("read_points", [](const std::string& path, const std::vector<int>& classes) {
         PointSet set;
         {
           py::gil_scoped_release release;
-          set = read_point_set(path);
+          set = classes.empty() ? read_point_set(path) : read_las_points(path, classes);
         }
         return point_cloud(set);
       },
-      py::arg("path"),
-      "Reads a point cloud (.ply, .xyz, .pwn, .off, .las) -> PointCloud(points, normals, colors); absent attributes are None.");
+      py::arg("path"), py::kw_only(), py::arg("classes") = std::vector<int>{},
+      "Reads a point cloud (.ply, .xyz, .pwn, .off, .las, .laz) -> PointCloud(points, normals, colors); absent attributes are None. "
+      "classes: for LAS/LAZ, keep the points of these ASPRS classes only (e.g. [2, 6]: ground and buildings).");
   m.def("write_points", [](const std::string& path, const DoubleArray& points, const py::object& point_normals, bool ascii) {
         const PointSet set = to_point_set(points, point_normals);
         py::gil_scoped_release release;

@@ -1,4 +1,6 @@
 """Reading and writing: round trips, shapes, dtypes, errors with the CLI's messages."""
+import pathlib
+
 import numpy as np
 import pytest
 
@@ -64,3 +66,20 @@ def test_wrong_shapes_and_indices_are_value_errors(tmp_path, cube):
 def test_unwritable_destination_leaves_nothing(tmp_path, cube):
     with pytest.raises(sm.Error):
         sm.write_mesh(str(tmp_path / "no" / "such" / "m.ply"), *cube)
+
+
+LIDAR = pathlib.Path(__file__).resolve().parents[2].parent / "shared" / "data" / "lidar"
+
+
+@pytest.mark.skipif(not (LIDAR / "ahn3_cropped_2.laz").exists(), reason="no shared LiDAR data")
+def test_laz_reads_with_and_without_a_class_filter(tmp_path):
+    tile = str(LIDAR / "ahn3_cropped_2.laz")
+    everything = sm.read_points(tile)
+    ground = sm.read_points(tile, classes=[2])
+    ground_and_buildings = sm.read_points(tile, classes=[2, 6])
+    assert len(everything.points) == 208432  # the header's count (the tile's README)
+    assert 0 < len(ground.points) < len(ground_and_buildings.points) < len(everything.points)
+    assert np.isfinite(everything.points).all()
+    np.savetxt(tmp_path / "c.xyz", everything.points[:10])
+    with pytest.raises(ValueError):
+        sm.read_points(str(tmp_path / "c.xyz"), classes=[2])
