@@ -25,6 +25,12 @@ T get(const std::uint8_t* data, std::size_t offset) {
 /// Points per chunk of an uncompressed file.
 constexpr std::uint64_t kLasChunk = 50'000;
 constexpr std::uint32_t kVariableChunks = 0xFFFFFFFFu;
+// Arithmetic coding spends at least a fraction of a bit on every symbol, and
+// every LAZ point decodes several symbols of models that never give one
+// symbol more than 1 - 2^-10 of the interval: far fewer than this many
+// points fit in a byte. A chunk claiming more is corrupt, and is refused
+// before its records are allocated.
+constexpr std::uint64_t kMaxPointsPerByte = 4096;
 // The smallest record of each point format (LAS 1.4 R15, table 7 onwards).
 constexpr int kMinRecordLength[11] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
 
@@ -164,6 +170,10 @@ void LasReader::Impl::read_laz_chunks(const std::vector<std::uint8_t>& laszip_vl
     chunk_bytes.resize(chunk_start.size());
     chunk_points.resize(chunk_start.size());
   }
+  for (std::size_t i = 0; i < chunk_start.size(); ++i)
+    if (chunk_points[i] > 1 + kMaxPointsPerByte * chunk_bytes[i])
+      throw InvalidInput(path + ": LAZ chunk " + format_number(i) + " claims " + format_number(chunk_points[i]) + " points in " +
+                         format_number(chunk_bytes[i]) + " bytes (corrupt point count)");
   info.chunks = chunk_start.size();
 }
 
