@@ -115,6 +115,11 @@ Command add_stereo(CLI::App& app) {
                       result.holes.holes, result.holes.filled, result.holes.added_facets, result.holes.unfaired, result.holes.failed);
         printer.message(line);
       }
+      if (o->stereo.manifold) {
+        std::snprintf(line, sizeof line, "  manifold: %zu edges had more than two facets; %zu vertices duplicated, %zu facets flipped",
+                      result.manifold.non_manifold_edges, result.manifold.duplicated_vertices, result.manifold.flipped_facets);
+        printer.message(line);
+      }
       printer.message("  mesh: " + std::to_string(result.meshing.mesh.faces.size()) + " facets, " +
                       std::to_string(result.meshing.mesh.vertices.size()) + " vertices -> " + o->output);
       for (const StageTiming& s : stages) {

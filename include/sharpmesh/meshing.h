@@ -180,6 +180,10 @@ std::size_t trim_unless_bridging(SurfaceMesh& mesh, const std::vector<Vec3>& poi
 struct HoleFillingOptions {
   double max_perimeter = 0;      ///< data units; 0 fills nothing
   std::size_t max_edges = 2000;  ///< longer cycles are left open (the patch search is cubic at worst)
+  /// The filling separates the sheets meeting at non-manifold edges and
+  /// vertices (duplicating vertices); true joins them again by position
+  /// afterwards, false keeps the mesh a manifold.
+  bool merge_split_vertices = true;
   void check() const;
 };
 
@@ -194,6 +198,20 @@ struct HoleFillingStats {
 /// Fills the holes of `mesh` (any orientation, non-manifold vertices
 /// allowed) whose perimeter is at most options.max_perimeter.
 HoleFillingStats fill_holes(SurfaceMesh& mesh, const HoleFillingOptions& options, const Progress& progress = {});
+
+/// What make_manifold found and changed.
+struct ManifoldRepairStats {
+  std::size_t non_manifold_edges = 0;   ///< edges with more than two facets, before
+  std::size_t duplicated_vertices = 0;  ///< copies made to separate the sheets meeting there
+  std::size_t flipped_facets = 0;       ///< to agree with their neighbours
+};
+
+/// Makes a triangle mesh a combinatorial manifold, consistently oriented:
+/// CGAL's orient_polygon_soup separates the sheets that meet at a
+/// non-manifold edge or vertex (duplicating its vertices) and flips facets
+/// until neighbours agree; each connected part then keeps the orientation
+/// most of its facets had. Facets and positions are kept.
+ManifoldRepairStats make_manifold(SurfaceMesh& mesh);
 
 /// Self-intersection repair: the facets that cross others, with `rings`
 /// rings of neighbours (one more each round), are cut out and the holes

@@ -316,6 +316,9 @@ struct StereoReconstructionOptions {
   /// Beyond the thesis (its remedy in 6.6): holes of the mesh whose boundary
   /// is shorter than this are filled, fraction of the half diagonal; 0: off.
   double max_hole = 0.0;
+  /// Beyond the thesis: the mesh made a combinatorial manifold, consistently
+  /// oriented (make_manifold), so that every edge has at most two facets.
+  bool manifold = true;
   /// Worker threads of this call's parallel loops (0: every core). The
   /// limit holds for this call only, not for the process.
   int threads = 0;
@@ -334,6 +337,7 @@ struct StereoReconstruction {
   SoupFillStats fill;
   SoupMeshingResult meshing;
   HoleFillingStats holes;
+  ManifoldRepairStats manifold;
   /// Wall time and memory of: tracks (6.3.1), depth maps, soup filters, meshing.
   std::vector<StageTiming> stages;
 };

@@ -97,7 +97,7 @@ def test_every_option_is_a_flag_and_a_keyword(cli):
         expected.add(f"--no-{flag}" if default is True else f"--{flag}")
         assert getattr(sm.ReconstructOptions(**{name: default}), name) == default
     own = {"--help", "--output", "--no-features", "--features", "--sharp-edges", "--time-limit", "--allow-invalid", "--ascii",
-           "--threads", "--quiet", "--report"}
+           "--threads", "--quiet", "--report", "--classes"}
     assert flags == expected | own, (flags - expected - own, expected - flags)
     features_help = subprocess.run([cli, "features", "--help"], check=True, capture_output=True, text=True).stdout
     for name in sm.FeatureOptions().to_dict():

@@ -94,11 +94,16 @@ HoleFillingStats fill_holes(SurfaceMesh& surface, const HoleFillingOptions& opti
   report_progress(progress, "filling holes", 1.0);
   if (stats.filled == 0) return stats;
 
-  // Back to an indexed mesh, merging the vertices split above.
+  // Back to an indexed mesh, merging the vertices split above unless asked to keep the manifold.
   SurfaceMesh filled;
   std::map<Point, std::uint32_t> index_of;
   std::vector<std::uint32_t> index(mesh.number_of_vertices() + mesh.number_of_removed_vertices(), 0);
   for (Mesh::Vertex_index v : mesh.vertices()) {
+    if (!options.merge_split_vertices) {
+      index[v] = static_cast<std::uint32_t>(filled.vertices.size());
+      filled.vertices.push_back(detail::from_cgal(mesh.point(v)));
+      continue;
+    }
     const auto [it, inserted] = index_of.emplace(mesh.point(v), static_cast<std::uint32_t>(filled.vertices.size()));
     if (inserted) filled.vertices.push_back(detail::from_cgal(mesh.point(v)));
     index[v] = it->second;

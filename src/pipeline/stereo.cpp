@@ -78,10 +78,16 @@ StereoReconstruction run_stereo(StereoModel& model, const std::vector<GreyImage>
     StageTimer timer(result.stages, "meshing");
     result.meshing = mesh_soup(result.soup, options.meshing, progress);
   }
+  // Manifold first: the holes are then the boundary cycles of one oriented surface.
+  if (options.manifold) {
+    StageTimer timer(result.stages, "manifold");
+    result.manifold = make_manifold(result.meshing.mesh);
+  }
   if (options.max_hole > 0) {
     StageTimer timer(result.stages, "hole filling");
     HoleFillingOptions holes;
     holes.max_perimeter = options.max_hole * result.meshing.half_diagonal;
+    holes.merge_split_vertices = !options.manifold;
     result.holes = fill_holes(result.meshing.mesh, holes, progress);
   }
   return result;

@@ -94,6 +94,12 @@ std::vector<OptionField<O>> stereo_fields() {
                                      "fraction of the soup's half diagonal", &O::max_hole);
   hole.group = "Meshing (thesis 6.3.3)";
   f.push_back(hole);
+  OptionField<O> manifold = member_field("manifold",
+                                         "Make the mesh manifold and consistently oriented: the sheets meeting at an edge of more than "
+                                         "two facets are separated (beyond the thesis)",
+                                         "", &O::manifold);
+  manifold.group = hole.group;
+  f.push_back(manifold);
   f.push_back(member_field("threads", "Worker threads of this reconstruction (0: every core)", "", &O::threads));
   return f;
 }

@@ -28,7 +28,9 @@ std::string stereo_report_json(const StereoReconstruction& r, const StereoRecons
                   {"skipped", r.fill.skipped}}},
         {"mesh", {{"vertices", r.meshing.mesh.vertices.size()}, {"facets", r.meshing.mesh.faces.size()}, {"refinement_steps", r.meshing.steps}}},
         {"holes", {{"boundary_cycles", r.holes.holes}, {"filled", r.holes.filled}, {"added_facets", r.holes.added_facets},
-                   {"unfaired", r.holes.unfaired}, {"failed", r.holes.failed}}}}},
+                   {"unfaired", r.holes.unfaired}, {"failed", r.holes.failed}}},
+        {"manifold", {{"non_manifold_edges", r.manifold.non_manifold_edges}, {"duplicated_vertices", r.manifold.duplicated_vertices},
+                      {"flipped_facets", r.manifold.flipped_facets}}}}},
       {"stages", detail::stages_json(r.stages)}};
   return report.dump();
 }

@@ -183,7 +183,7 @@ c = r["counts"]
 assert c["tracks"]["input"] > c["tracks"]["kept"] > 1000, c["tracks"]
 assert c["soup"]["unique"] > c["soup"]["kept"] > 1000, c["soup"]
 assert c["mesh"]["facets"] > 1000, c["mesh"]
-assert [s["name"] for s in r["stages"]] == ["read", "tracks", "depth maps", "soup filters", "soup fill", "meshing", "write"], r["stages"]
+assert [s["name"] for s in r["stages"]] == ["read", "tracks", "depth maps", "soup filters", "soup fill", "meshing", "manifold", "write"], r["stages"]
 f = c["fill"]
 assert f["skipped"] == "" and f["surface_facets"] > 0 and 0 < f["added"] <= f["surface_facets"] - f["removed_visibility"], f
 assert r["parameters"]["merge_distance"] == 0.001 and r["parameters"]["max_crossings"] == 5, r["parameters"]

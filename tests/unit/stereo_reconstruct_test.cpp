@@ -8,12 +8,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "fixtures.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/io.h"
+#include "sharpmesh/meshing.h"
 #include "sharpmesh/scene.h"
 #include "sharpmesh/stereo_io.h"
 #include "sharpmesh/stereo_reconstruct.h"
@@ -592,6 +594,11 @@ TEST(StereoReconstruction, AGeneratedSceneIsReconstructedAccuratelyAndCompletely
   // spreads next to it, so accuracy at 1% stays short of 0.95 on this scene.
   EXPECT_GT(e.accuracy[one_percent], 0.935);
   EXPECT_GT(e.completeness[one_percent], 0.92);
+  // One manifold, consistently oriented surface (make_manifold).
+  const TopologyReport topology = check_topology(r.meshing.mesh, false);
+  EXPECT_EQ(topology.non_manifold_edges, 0u);
+  EXPECT_EQ(topology.non_manifold_vertices, 0u);
+  EXPECT_TRUE(topology.orientable);
 }
 
 TEST(StereoReconstruction, ImagesOfTheWrongSizeAreRefusedByName) {
@@ -604,4 +611,40 @@ TEST(StereoReconstruction, ImagesOfTheWrongSizeAreRefusedByName) {
   StereoModel broken = read_stereo_model(dir.path("scene"));
   broken.tracks[0].views.push_back(17);
   EXPECT_THROW(broken.validate("model"), InvalidInput);
+}
+
+// Three sheets on one edge and a facet facing the wrong way: afterwards no
+// edge has more than two facets, neighbours agree on their orientation, and
+// the facets and positions are those of before.
+TEST(ManifoldRepair, SheetsMeetingAtAnEdgeAreSeparatedAndNeighboursAgree) {
+  SurfaceMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}, {1.5, 1, 0}};
+  // Three fins on edge 0-1; a fourth facet next to the first, wound the other way.
+  mesh.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}, {2, 1, 5}};
+  const SurfaceMesh before = mesh;
+  const ManifoldRepairStats stats = make_manifold(mesh);
+  EXPECT_EQ(stats.non_manifold_edges, 1u);
+  EXPECT_GT(stats.duplicated_vertices, 0u);
+  ASSERT_EQ(mesh.faces.size(), before.faces.size());
+  const TopologyReport topology = check_topology(mesh, false);
+  EXPECT_EQ(topology.non_manifold_edges, 0u);
+  EXPECT_EQ(topology.non_manifold_vertices, 0u);
+  EXPECT_TRUE(topology.orientable);
+  // Every directed edge at most once: neighbours are wound consistently.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (const Triangle& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(++directed[std::make_pair(f[k], f[(k + 1) % 3])], 1);
+  // The same triangles in space, some reversed.
+  for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
+    std::vector<Vec3> a, b;
+    for (int k = 0; k < 3; ++k) a.push_back(before.vertices[before.faces[i][k]]), b.push_back(mesh.vertices[mesh.faces[i][k]]);
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b);
+  }
+  SurfaceMesh clean = mesh;
+  const ManifoldRepairStats again = make_manifold(clean);
+  EXPECT_EQ(again.non_manifold_edges, 0u);
+  EXPECT_EQ(again.duplicated_vertices, 0u);
+  EXPECT_EQ(again.flipped_facets, 0u);
 }

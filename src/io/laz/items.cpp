@@ -42,6 +42,10 @@ std::int32_t wrapping_add(std::int32_t a, std::int32_t b) {
 std::int32_t wrapping_multiply(std::int32_t a, std::int32_t b) {
   return static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::int64_t>(a) * b));
 }
+// GPS times are 64-bit patterns the coder adds to; a corrupt stream may overflow them, which wraps.
+void advance_time(std::int64_t& time, std::int64_t diff) {
+  time = static_cast<std::int64_t>(static_cast<std::uint64_t>(time) + static_cast<std::uint64_t>(diff));
+}
 std::uint8_t clamp_byte(int v) { return static_cast<std::uint8_t>(std::clamp(v, 0, 255)); }
 
 }  // namespace
@@ -196,7 +200,7 @@ void GpsTimeDecoder::decode_time(ArithmeticDecoder& decoder) {
       const std::uint32_t multi = decoder.decode_symbol(zero_diff_);
       if (multi == 1) {
         last_diff_[last_] = diff_.decompress(decoder, 0, 0);
-        last_time_[last_] += last_diff_[last_];
+        advance_time(last_time_[last_], last_diff_[last_]);
         extreme_counter_[last_] = 0;
       } else if (multi == 2) {
         start_full();
@@ -208,7 +212,7 @@ void GpsTimeDecoder::decode_time(ArithmeticDecoder& decoder) {
     }
     const std::uint32_t multi = decoder.decode_symbol(multi_);
     if (multi == 1) {
-      last_time_[last_] += diff_.decompress(decoder, last_diff_[last_], 1);
+      advance_time(last_time_[last_], diff_.decompress(decoder, last_diff_[last_], 1));
       extreme_counter_[last_] = 0;
     } else if (multi < kMultiUnchanged) {
       std::int32_t diff;
@@ -229,7 +233,7 @@ void GpsTimeDecoder::decode_time(ArithmeticDecoder& decoder) {
           extreme(diff);
         }
       }
-      last_time_[last_] += diff;
+      advance_time(last_time_[last_], diff);
     } else if (multi == kMultiCodeFull) {
       start_full();
     } else if (multi > kMultiCodeFull) {
