@@ -1,5 +1,3 @@
-// Reconstructs a feature-preserving mesh from a point cloud with the CLI's
-// defaults: reconstruct_cloud CLOUD MESH (any format sharpmesh reads/writes).
 #include <cstdio>
 
 #include "sharpmesh/errors.h"
