@@ -274,10 +274,9 @@ struct SoupFillOptions {
   /// A facet crossed by more lines of sight than this is removed (t3 of 6.3.2).
   int max_crossings = 1;
   /// Protecting-ball spacing d' of the tracks' surface (7.3.2), in units of
-  /// l: its facets are about 2 d' long. At 1 (2 before 2026-12-02), the
-  /// surface overshoots the tracks' edge less and deviates less where it
-  /// overlaps the soup: completeness at 0.2% +0.9-1.5 points on three of
-  /// the four level-a scenes, for 6 s more on 200k tracks (docs/stereo.md).
+  /// l: its facets are about 2 d' long. At 1 the surface overshoots the
+  /// tracks' edge less than at 2 and deviates less where it overlaps the
+  /// soup, for a little more time (docs/stereo.md).
   double resolution = 1.0;
   void check() const;
 };

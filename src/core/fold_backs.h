@@ -1,6 +1,6 @@
 // A polyline that turns back on itself (by more than 120 degrees) overlaps
 // itself: a sharp edge never does, and CGAL's protection cannot take it
-// (couplingdown 50k, sampling seed 9: a crash in its ball removal).
+// (its ball removal crashes on such a curve).
 #pragma once
 
 #include <set>

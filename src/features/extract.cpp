@@ -48,10 +48,8 @@ constexpr double kNoiseScaleRatio = 3;
 constexpr int kMaxDenoisePasses = 3;
 // r_junc at most 8 average spacings (beyond the thesis): two segments of
 // the polylines, whose points lie at least 4 spacings apart (the r_p floor).
-// Corpus of 15 models, recall/precision at 0.5% (with the dart rule of
-// connect_polylines): 0.915/0.934 -> 0.955/0.947 at 50k, 0.954/0.969 ->
-// 0.970/0.974 at 200k; a cap of 5 spacings did as well on average but
-// dropped corners of cubes at 50k.
+// A wider radius joins ends across features that do not meet; a cap of 5
+// spacings loses the corners of coarsely sampled cubes (docs/corpus.md).
 constexpr double kMaxJunctionRadius = 8;
 
 // RMS distance of the points `ids` to their least-squares plane.

@@ -100,8 +100,8 @@ bool group_meets(const std::vector<const End*>& group, double r, double lateral)
 
 // The end moves to its junction `p`. Vertices that `p` lies beyond (the
 // line would turn back by more than 90 degrees there) are dropped: a
-// junction placed between a polyline's first two points made it fold back
-// on itself (18 of couplingdown 50k's 104 polylines, sampling seed 9).
+// junction placed between a polyline's first two points would make it fold
+// back on itself, which CGAL's protection cannot take (core/fold_backs.h).
 void set_end(TracedPolyline& line, bool back, const Vec3& p) {
   std::vector<Vec3>& v = line.vertices;
   std::vector<Vec3>& d = line.directions;

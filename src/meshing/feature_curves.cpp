@@ -1,8 +1,7 @@
 // Polylines made fit for CGAL's feature protection (thesis 7.3.2 protects
 // curves that meet only at junctions). Extracted polylines meet at their
-// ends, but the ends of a loop can miss each other by a rounding error
-// (couplingdown 50k, sampling seed 7: 1e-18), which CGAL 5.5 takes for two
-// corners and then walks the curve for ever; given polylines (CAD exports)
+// ends, but the ends of a loop can miss each other by a rounding error,
+// which CGAL 5.5 takes for two corners and then walks the curve for ever; given polylines (CAD exports)
 // often run through each other's corners as closed face outlines.
 #include <algorithm>
 #include <cmath>

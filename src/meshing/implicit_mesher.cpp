@@ -173,13 +173,11 @@ NewVertexCluster densest_new_vertices(const C3t3& c3t3, double edge_length, std:
 // Every kRunawayWindow new vertices, the cell of the edge length holding
 // most of them is found; when two windows in a row put more than an eighth
 // of their vertices into the same spot, the refinement ends as `runaway`.
-// Healthy runs of seven CGAL models at 50k points, delta 1.5 and 3.5, put
-// at most 40 in one cell; a run-away repair puts about 400 there window
-// after window (couplingdown seed 3 at delta 1.5: from 20k vertices on,
-// stopped at 21k, 3 s in; before, only the vertex bound below caught it, at
-// 40k vertices after 105 s, and the whole run now takes 13 s instead of
-// 112). One window alone is not enough: anchor 40k at delta 7 puts 135 new
-// vertices around a corner once while refining it, then none. Past
+// Healthy refinements spread a window's vertices over the surface (a few
+// dozen in the fullest cell); a run-away repair puts about ten times that
+// into one cell window after window, and the vertex bound below would only
+// catch it after minutes. One window alone is not enough: refining a sharp
+// corner can put a burst of vertices around it once, then none. Past
 // `runaway_vertices` it ends as well. Both are counts, not times, so the
 // result does not depend on the machine.
 constexpr std::size_t kRunawayWindow = 1024;

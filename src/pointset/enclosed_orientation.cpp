@@ -3,15 +3,13 @@
 // (winding_number.h) and flipped.
 //
 // The MST and the crease votes (patch_orientation.cpp) decide signs locally.
-// A small bore whose wall is all crease points (radius under 3 spacings,
-// CGAL's couplingdown.off at 50k points, sampling seed 12) can be inverted as
-// a whole: along each rim the jet normals turn the short way and the MST
+// A small bore whose wall is all crease points (radius under 3 spacings)
+// can be inverted as a whole: along each rim the jet normals turn the short way and the MST
 // follows. Nothing local tells it from a pin; the rest of the surface does.
 // With consistent normals the winding number is about 0 just outside the
-// cloud and 1 just inside. Two spacings along the normal of a point of that
-// bore it was 0.76 (median; 0.02 for the correctly oriented points), and two
-// spacings against it 1.21: the bore's own flipped contribution pushes both
-// out of place.
+// cloud and 1 just inside; at the points of an inverted bore the values two
+// spacings along and against the normal are swapped, near 1 and 0, because
+// the bore's own flipped contribution pushes both out of place.
 //
 // Points whose outer side reads above 0.4 are grouped (kNN neighbours with
 // normals on the same side); each group is flipped when flipping it brings
@@ -22,11 +20,9 @@
 // keeps two faces closer than the offset (a slit) as they are: there the
 // outer offset point lies inside the facing wall, and a flip makes it worse.
 //
-// Measured on 50k-point samples of 42 CGAL models: couplingdown seed 12 (the
-// bore, 207 normals), cheese.off (2,571 flipped, of which 2,561 had been
-// wrong by the reference's winding number) and tetrahedron.off (341, all
-// wrong before) changed; none of the other models did. Accepting a flip at a
-// 0.85 ratio instead of 0.5 also flipped 124 right normals on 3torus.off.
+// The halving rule is strict on purpose: a laxer ratio also flips right
+// normals on surfaces of higher genus, where the winding number is not near
+// 0 or 1 everywhere outside the sheets.
 #include <algorithm>
 #include <cmath>
 

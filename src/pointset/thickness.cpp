@@ -66,7 +66,7 @@ std::vector<double> local_thickness(const PointSet& points, double min_thickness
   // Such a q lies at least cos(30) min_thickness along the normal line. When
   // the range is wide (coarse meshes: max_thickness is d'), the ball of radius
   // max_thickness holds thousands of points of p's own sheet; the cone is
-  // then covered by balls along the line (fandisk 200k at delta 16: 23 -> 12 s),
+  // then covered by balls along the line, which visit far fewer points,
   // centred at s = t0, 1.25 t0, ... with radius 0.77 s (which contains the
   // cone between s and 1.25 s), nearest first, stopping once a ball can hold
   // nothing closer than the best so far. Same points, same result.
