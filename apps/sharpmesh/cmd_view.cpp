@@ -145,7 +145,8 @@ Command add_render(CLI::App& app) {
   sub->add_option("-o,--output", o->output, "Output picture (.png)")->required();
   sub->add_option("--width", render->width, "Picture width, pixels")->capture_default_str();
   sub->add_option("--height", render->height, "Picture height, pixels")->capture_default_str();
-  sub->add_option("--browser", render->browser, "Browser binary (default: $SHARPMESH_BROWSER, else chromium on PATH)");
+  sub->add_option("--browser", render->browser, "Browser binary (default: $SHARPMESH_BROWSER, else chromium on PATH)")
+      ->envname("SHARPMESH_BROWSER");
   sub->add_option("--timeout", render->timeout_seconds, "Give up after this many seconds")->capture_default_str();
   auto photo = std::make_shared<bool>(false);
   auto images = std::make_shared<std::string>();

@@ -63,7 +63,4 @@ class LasReader {
 /// with their colours when the format has them.
 PointSet read_las_points(const std::string& path, const std::vector<int>& classes = {});
 
-/// The number of points of each class (index = class, 0-255) in a LAS/LAZ file.
-std::vector<std::uint64_t> las_class_histogram(const std::string& path);
-
 }  // namespace sharpmesh

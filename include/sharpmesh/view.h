@@ -66,7 +66,9 @@ std::string viewer_page(const ViewScene& scene, const ViewOptions& options = {})
 
 struct RenderOptions {
   int width = 1600, height = 1200;  ///< pixels
-  /// Browser binary; empty: $SHARPMESH_BROWSER, else chromium or chromium-browser on PATH.
+  /// Browser binary; empty: chromium, chromium-browser or google-chrome on
+  /// PATH. The command line and Python take it from $SHARPMESH_BROWSER when
+  /// not given; the library reads no setting from the environment.
   std::string browser;
   double timeout_seconds = 120;
   /// A picture (for example the photograph of the camera looked through)

@@ -58,7 +58,9 @@ to this mesh, distance_scale at the red end (0: the largest); view: iso, front, 
           RenderOptions r;
           r.width = width;
           r.height = height;
-          r.browser = browser;
+          // As the command line: $SHARPMESH_BROWSER when no browser is given.
+          r.browser = browser.empty() ? py::module_::import("os").attr("environ").attr("get")("SHARPMESH_BROWSER", "").cast<std::string>()
+                                      : browser;
           r.timeout_seconds = timeout;
           py::gil_scoped_release release;
           render_png(path, a.scene, a.view, r);

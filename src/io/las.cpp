@@ -263,14 +263,6 @@ PointSet read_las_points(const std::string& path, const std::vector<int>& classe
   return out;
 }
 
-std::vector<std::uint64_t> las_class_histogram(const std::string& path) {
-  LasReader reader(path);
-  std::vector<std::uint64_t> histogram(256, 0);
-  for (std::size_t chunk = 0; chunk < reader.chunk_count(); ++chunk)
-    for (std::uint8_t c : reader.read_chunk(chunk).classification) ++histogram[c];
-  return histogram;
-}
-
 namespace io {
 PointSet read_las(const std::string& path) { return read_las_points(path); }
 }  // namespace io

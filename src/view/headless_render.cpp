@@ -39,10 +39,6 @@ std::string find_browser(const RenderOptions& options) {
       throw InvalidArgument("render: the browser '" + options.browser + "' is not an executable file");
     return options.browser;
   }
-  if (const char* env = std::getenv("SHARPMESH_BROWSER"); env && *env) {
-    if (access(env, X_OK) != 0) throw InvalidArgument(std::string("render: SHARPMESH_BROWSER='") + env + "' is not an executable file");
-    return env;
-  }
   const char* path = std::getenv("PATH");
   std::string dirs = path ? path : "/usr/bin:/bin";
   for (const char* name : {"chromium", "chromium-browser", "google-chrome"}) {
@@ -54,7 +50,7 @@ std::string find_browser(const RenderOptions& options) {
       start = end + 1;
     }
   }
-  throw InvalidArgument("render: no headless browser found; install chromium (apt-get install chromium) or set SHARPMESH_BROWSER");
+  throw InvalidArgument("render: no headless browser found; install chromium (apt-get install chromium) or name one (--browser, SHARPMESH_BROWSER)");
 }
 
 /// A private folder under the system's temporary directory, removed on exit.
