@@ -42,6 +42,8 @@ class TempDir {
 /// Path of a file of CGAL's sample data, or "" when the data is not fetched.
 std::string data_file(const std::string& relative);
 void write_bytes(const std::string& path, const std::string& bytes);
+/// The whole file ("" when it cannot be read).
+std::string read_bytes(const std::string& path);
 /// The message of the InvalidInput that `f` throws, or "no error".
 template <class F>
 std::string error_of(F&& f) {

@@ -19,11 +19,6 @@ using test::write_bytes;
 
 namespace {
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 /// The smaller real tile, or "" when the shared data is not there.
 std::string real_tile() {
   const std::string path = std::string(SHARPMESH_LIDAR_DIR) + "/ahn3_cropped_2.laz";
@@ -57,7 +52,7 @@ std::string read_everything(const std::string& path) {
 TEST(Laz, BrokenTilesGiveAClearErrorNamingTheFile) {
   const std::string tile = real_tile();
   if (tile.empty()) GTEST_SKIP() << "no shared LiDAR data";
-  const std::string good = read_all(tile);
+  const std::string good = test::read_bytes(tile);
   TempDir dir;
   const auto expect_error = [&](const std::string& name, const std::string& bytes, const std::string& words) {
     const std::string path = dir.path(name);
@@ -90,7 +85,7 @@ TEST(Laz, BrokenTilesGiveAClearErrorNamingTheFile) {
 TEST(Laz, DamagedBytesNeverCrash) {
   const std::string tile = real_tile();
   if (tile.empty()) GTEST_SKIP() << "no shared LiDAR data";
-  const std::string good = read_all(tile);
+  const std::string good = test::read_bytes(tile);
   TempDir dir;
   const auto point_offset = take<std::uint32_t>(good, 96);
   const auto table = static_cast<std::size_t>(take<std::int64_t>(good, point_offset));

@@ -44,11 +44,6 @@ cv::Mat read_depth(const std::string& path) {
   return depth;
 }
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 }  // namespace
 
 TEST(MakeScene, LayoutAndTracksReprojectWithinTheNoise) {
@@ -59,7 +54,7 @@ TEST(MakeScene, LayoutAndTracksReprojectWithinTheNoise) {
   for (const char* f : {"/images/view_000.png", "/images/view_005.png", "/sparse/cameras.txt", "/sparse/images.txt", "/sparse/points3D.txt",
                         "/tracks.ply", "/dense/fused.ply", "/dense/fused.ply.vis", "/ground_truth.ply", "/depth/view_003.png.depth.bin",
                         "/scene.json"})
-    EXPECT_FALSE(read_all(out + f).empty()) << f;
+    EXPECT_FALSE(test::read_bytes(out + f).empty()) << f;
   const StereoModel model = read_colmap_model(out + "/sparse");
   ASSERT_EQ(model.cameras.size(), 6u);
   ASSERT_EQ(model.tracks.size(), s.tracks);
@@ -116,12 +111,12 @@ TEST(MakeScene, DeterministicAndRefusesForeignFolders) {
   const SceneOptions o = small_scene(0.5);
   make_scene(dir.path("a"), o);
   make_scene(dir.path("b"), o);
-  EXPECT_EQ(read_all(dir.path("a/tracks.ply")), read_all(dir.path("b/tracks.ply")));
-  EXPECT_EQ(read_all(dir.path("a/images/view_001.png")), read_all(dir.path("b/images/view_001.png")));
+  EXPECT_EQ(test::read_bytes(dir.path("a/tracks.ply")), test::read_bytes(dir.path("b/tracks.ply")));
+  EXPECT_EQ(test::read_bytes(dir.path("a/images/view_001.png")), test::read_bytes(dir.path("b/images/view_001.png")));
   make_scene(dir.path("a"), o);  // a previous scene is replaced
   test::write_bytes(dir.path("notes.txt"), "mine");
   EXPECT_THROW(make_scene(dir.dir(), o), InvalidArgument);
-  EXPECT_EQ(read_all(dir.path("notes.txt")), "mine");
+  EXPECT_EQ(test::read_bytes(dir.path("notes.txt")), "mine");
   SceneOptions bad = o;
   bad.views = 1;
   EXPECT_THROW(make_scene(dir.path("c"), bad), InvalidArgument);

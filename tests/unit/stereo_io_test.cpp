@@ -25,14 +25,9 @@ namespace {
 
 const std::string kColmap = std::string(SHARPMESH_TEST_DATA) + "/colmap";
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 void copy_model(const std::string& from, const TempDir& to, const std::string& ext) {
   for (const char* name : {"cameras", "images", "points3D"})
-    write_bytes(to.path(std::string(name) + ext), read_all(from + "/" + name + ext));
+    write_bytes(to.path(std::string(name) + ext), test::read_bytes(from + "/" + name + ext));
 }
 
 void write_image(const std::string& path, int width, int height) {
@@ -145,16 +140,16 @@ TEST(Colmap, RefusesTrackOnMissingImage) {
 TEST(Colmap, RefusesTruncatedAndUnknownBinary) {
   TempDir dir;
   copy_model(kColmap + "/binary", dir, ".bin");
-  const std::string images = read_all(kColmap + "/binary/images.bin");
+  const std::string images = test::read_bytes(kColmap + "/binary/images.bin");
   write_bytes(dir.path("images.bin"), images.substr(0, images.size() - 5));
   EXPECT_NE(error_of([&] { read_colmap_model(dir.dir()); }).find("truncated"), std::string::npos);
   copy_model(kColmap + "/binary", dir, ".bin");
-  std::string cameras = read_all(kColmap + "/binary/cameras.bin");
+  std::string cameras = test::read_bytes(kColmap + "/binary/cameras.bin");
   const std::int32_t bad_model = 99;
   std::memcpy(cameras.data() + 12, &bad_model, 4);  // first camera's model id
   write_bytes(dir.path("cameras.bin"), cameras);
   EXPECT_NE(error_of([&] { read_colmap_model(dir.dir()); }).find("unknown camera model id 99"), std::string::npos);
-  std::string huge = read_all(kColmap + "/binary/points3D.bin");
+  std::string huge = test::read_bytes(kColmap + "/binary/points3D.bin");
   const std::uint64_t count = std::uint64_t(1) << 60;
   std::memcpy(huge.data(), &count, 8);
   copy_model(kColmap + "/binary", dir, ".bin");
@@ -182,7 +177,7 @@ TEST(Colmap, FusedVisIndicesFollowFileOrderNotImageIds) {
   EXPECT_LT(distance(back.tracks[0].position, t.position), 1e-6);
   ASSERT_EQ(normals.size(), 1u);
   // A .vis index beyond the model's images, and a .vis of another point count.
-  std::string vis = read_all(dir.path("fused.ply.vis"));
+  std::string vis = test::read_bytes(dir.path("fused.ply.vis"));
   const std::uint32_t bad = 3;
   std::memcpy(vis.data() + 12, &bad, 4);
   write_bytes(dir.path("fused.ply.vis"), vis);

@@ -8,7 +8,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 namespace sharpmesh::io::laz {
@@ -32,7 +31,6 @@ class SymbolModel {
  public:
   explicit SymbolModel(std::uint32_t symbols);
   void reset();
-  std::uint32_t symbols() const { return symbols_; }
 
  private:
   friend class ArithmeticDecoder;

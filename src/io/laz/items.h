@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "io/laz/arithmetic_decoder.h"
 
@@ -82,7 +83,6 @@ class ExtraBytesDecoder {
   explicit ExtraBytesDecoder(std::size_t count);
   void reset(const std::uint8_t* first);
   void decode(ArithmeticDecoder& decoder, std::uint8_t* out);
-  std::size_t size() const { return last_.size(); }
 
  private:
   std::vector<std::uint8_t> last_;
