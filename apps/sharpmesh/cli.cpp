@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <mutex>
@@ -20,9 +19,7 @@ void add_classes_option(CLI::App& app, std::vector<int>& classes) {
 
 PointSet read_cloud(const std::string& path, const std::vector<int>& classes) {
   if (classes.empty()) return read_point_set(path);
-  std::string ext = path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".las" && ext != ".laz") throw InvalidArgument("--classes needs a .las or .laz input (" + path + " has no classes)");
+  if (!is_las_path(path)) throw InvalidArgument("--classes needs a .las or .laz input (" + path + " has no classes)");
   PointSet points = read_las_points(path, classes);
   if (points.empty()) throw InvalidInput(path + ": no point has any of the classes given with --classes");
   return points;

@@ -2,8 +2,6 @@
 #include <cstdio>
 
 #include "cli.h"
-#include <filesystem>
-
 #include "sharpmesh/io.h"
 #include "sharpmesh/las.h"
 #include "sharpmesh/pointset.h"
@@ -26,8 +24,7 @@ Command add_info(CLI::App& app) {
   auto run = [options, common] {
     check_output(common->report, "report");
     const auto start = std::chrono::steady_clock::now();
-    const std::string ext = std::filesystem::path(options->input).extension().string();
-    const bool lidar = ext == ".las" || ext == ".laz" || ext == ".LAS" || ext == ".LAZ";
+    const bool lidar = is_las_path(options->input);
     // LAS/LAZ: one pass over the chunks gives the points and the class histogram.
     PointSet points;
     LasInfo las;

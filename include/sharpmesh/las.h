@@ -59,6 +59,9 @@ class LasReader {
   std::unique_ptr<Impl> impl_;
 };
 
+/// True when the path names a LAS or LAZ file (by its extension, any case).
+bool is_las_path(const std::string& path);
+
 /// All the points of a LAS/LAZ file whose class is in `classes` (empty: all),
 /// with their colours when the format has them.
 PointSet read_las_points(const std::string& path, const std::vector<int>& classes = {});

@@ -244,6 +244,11 @@ LasPoints LasReader::read_chunk(std::size_t chunk) {
   return out;
 }
 
+bool is_las_path(const std::string& path) {
+  const std::string ext = io::extension(path);
+  return ext == "las" || ext == "laz";
+}
+
 PointSet read_las_points(const std::string& path, const std::vector<int>& classes) {
   LasReader reader(path);
   std::vector<bool> keep_class(256, classes.empty());

@@ -130,6 +130,8 @@ TEST(Las, UncompressedFilesReadInChunksWithTheirAttributes) {
   EXPECT_EQ(points.number_of_returns[0], 2);
   EXPECT_EQ(points.classification[1], 6);
   EXPECT_DOUBLE_EQ(points.gps_time[2], 1002.5);
+  EXPECT_TRUE(is_las_path("tiles/B.LaZ") && is_las_path("three.las"));
+  EXPECT_FALSE(is_las_path("three.las.ply") || is_las_path("las"));
   EXPECT_EQ(read_las_points(dir.path("three.las"), {6}).size(), 1u);
   EXPECT_EQ(read_las_points(dir.path("three.las"), {2, 6}).size(), 3u);
   put<std::uint32_t>(bytes, 107, 4);  // one record more than the file holds
