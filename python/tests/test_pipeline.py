@@ -3,8 +3,8 @@ and a round trip against the command-line tool on the same input."""
 import json
 import re
 import subprocess
+import sys
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -174,22 +174,26 @@ def test_an_exception_in_the_callback_reaches_the_caller(cube_cloud):
 
 
 def test_the_gil_is_released_while_computing(cube_cloud):
-    ticks = 0
-    done = threading.Event()
+    # With a switch interval longer than any run, Python never takes the GIL
+    # away from a thread: the main thread runs again while the worker is busy
+    # only if the compiled call gives the GIL up itself.
+    finished = False
 
-    def count():
-        nonlocal ticks
-        while not done.is_set():
-            ticks += 1
-            time.sleep(0.001)
+    def compute():
+        nonlocal finished
+        sm.extract_features(cube_cloud.points)  # no callback
+        finished = True
 
-    counter = threading.Thread(target=count)
-    counter.start()
-    before = ticks
-    sm.extract_features(cube_cloud.points)  # about a second, no callback
-    done.set()
-    counter.join()
-    assert ticks - before > 50
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1000.0)
+    try:
+        worker = threading.Thread(target=compute)
+        worker.start()
+        ran_during_the_call = not finished
+        worker.join()
+    finally:
+        sys.setswitchinterval(interval)
+    assert finished and ran_during_the_call
 
 
 def test_bad_parameters_raise_with_the_cli_message(cube_cloud):

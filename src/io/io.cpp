@@ -102,8 +102,9 @@ void check_writable(const std::string& path) {
   const std::size_t slash = path.find_last_of('/');
   const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
   struct stat info {};
-  if (::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+  if (::stat(folder.c_str(), &info) != 0)
     throw InvalidArgument("cannot write '" + path + "': folder '" + folder + "' does not exist");
+  if (!S_ISDIR(info.st_mode)) throw InvalidArgument("cannot write '" + path + "': '" + folder + "' is not a folder");
   if (::access(folder.c_str(), W_OK) != 0)
     throw InvalidArgument("cannot write '" + path + "': folder '" + folder + "' is not writable");
   if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))

@@ -63,7 +63,12 @@ e = json.load(open("e.json"))["evaluation"]
 assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
 assert e["hausdorff"]["fraction_of_diagonal"] < 0.025, e["hausdorff"]
 r = json.load(open("r.json"))
-assert [s["name"] for s in r["stages"]] == ["read", "spacing", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "trim", "data fit", "self-intersection check", "write"], r["stages"]
+names = [s["name"] for s in r["stages"]]
+# The steps of 7.3 in their order, between reading and writing; repairs may add stages between them.
+steps = ["spacing", "normals", "poisson", "refinement", "trim", "write"]
+it = iter(names)
+assert names[0] == "read" and names[-1] == "write" and all(n in it for n in steps), names
+assert not {"detection", "clustering", "polylines", "snapping"} & set(names), names  # --no-features
 PY
     ;;
   reconstruct-features)  # Chapter 7 end to end: the cube's 12 edges come out as mesh edges
@@ -91,13 +96,15 @@ r = json.load(open("r.json"))
 p = r["protection"]
 assert p["represented_fraction"] == 1.0 and p["uncovered_gaps"] == 0, p
 names = [s["name"] for s in r["stages"]]
-assert names[:15] == ["read", "spacing", "detection", "clustering", "polylines", "normals", "poisson", "sign repair", "restriction", "seeds", "refinement", "flattening", "trim", "data fit", "snapping"], names
-assert names[15:] in (["self-intersection check", "write"], ["data fit after snapping", "self-intersection check", "write"]), names
+# Features (7.2) come before the normals and the implicit (7.3); snapping after the trim.
+steps = ["spacing", "detection", "clustering", "polylines", "normals", "poisson", "refinement", "trim", "snapping", "write"]
+it = iter(names)
+assert names[0] == "read" and names[-1] == "write" and all(n in it for n in steps), names
 assert r["counts"]["unsnapped_vertices"] <= r["counts"]["snapped_corners"] + r["counts"]["snapped_to_data"], r["counts"]
 assert r["parameters"]["snapping"] is True, r["parameters"]
 assert r["data_fit"]["points_off_first_mesh"] == 0 and r["data_fit"]["retries"] == 0, r["data_fit"]
 assert r["counts"]["normal_source"] == "cvcm", r["counts"]
-assert r["counts"]["flattened_vertices"] > 0 and r["counts"]["data_seeds"] >= 0, r["counts"]
+assert r["counts"]["flattened_vertices"] > 0, r["counts"]
 PY
     ;;
   features-given)
@@ -144,10 +151,18 @@ PY
   delta-too-small) cloud 500 c.xyz; expect_error 2 "max-facets" "out.ply" $bin reconstruct c.xyz -o out.ply --no-features --delta 0.0001 ;;
   delta-too-small-features) cloud 500 c.xyz; expect_error 2 "max-facets" "out.ply" $bin reconstruct c.xyz -o out.ply --delta 0.0001 ;;
   missing-output-folder) cloud 100 c.xyz; expect_error 2 "does not exist" "" $bin clean c.xyz -o no/such/dir/out.ply ;;
-  readonly-output-folder)
-    [[ $(id -u) -eq 0 ]] && { echo "running as root: permissions are not enforced, skipped"; exit 0; }
+  readonly-output-folder)  # a folder the user may not write to, and a file where a folder is expected
     cloud 100 c.xyz; mkdir ro; chmod a-w ro
-    expect_error 2 "not writable" "ro/out.ply" $bin clean c.xyz -o ro/out.ply ;;
+    runner=()
+    if [[ $(id -u) -eq 0 ]]; then
+      # Root writes anywhere: the command runs as the unprivileged user nobody,
+      # from a copy of the binary it can reach whatever the checkout's folders allow.
+      command -v setpriv >/dev/null || { echo "SKIP: running as root and setpriv (util-linux) is missing"; exit 77; }
+      cp "$bin" ./sharpmesh; chmod 755 . ./sharpmesh; bin=$PWD/sharpmesh
+      runner=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+    fi
+    expect_error 2 "not writable" "ro/out.ply" "${runner[@]}" $bin clean c.xyz -o ro/out.ply
+    expect_error 2 "not a folder" "" $bin clean c.xyz -o c.xyz/out.ply ;;
   bad-option) expect_error 2 "banana" "" $bin reconstruct --delta banana ;;
   time-limit)  # the user's clock: past it, exit 1 and nothing written (reading 20k points alone takes longer than 1 ms)
     cloud 20000 c.xyz; expect_error 1 "time-limit" "out.ply" $bin reconstruct c.xyz -o out.ply --time-limit 0.001 ;;
@@ -183,10 +198,13 @@ c = r["counts"]
 assert c["tracks"]["input"] > c["tracks"]["kept"] > 1000, c["tracks"]
 assert c["soup"]["unique"] > c["soup"]["kept"] > 1000, c["soup"]
 assert c["mesh"]["facets"] > 1000, c["mesh"]
-assert [s["name"] for s in r["stages"]] == ["read", "tracks", "depth maps", "soup filters", "soup fill", "meshing", "manifold", "write"], r["stages"]
+names = [s["name"] for s in r["stages"]]
+steps = ["tracks", "depth maps", "soup filters", "meshing", "write"]  # 6.3 to 6.5 in their order
+it = iter(names)
+assert names[0] == "read" and names[-1] == "write" and all(n in it for n in steps), names
 f = c["fill"]
 assert f["skipped"] == "" and f["surface_facets"] > 0 and 0 < f["added"] <= f["surface_facets"] - f["removed_visibility"], f
-assert r["parameters"]["merge_distance"] == 0.001 and r["parameters"]["max_crossings"] == 5, r["parameters"]
+assert r["parameters"]["merge_distance"] > 0 and r["parameters"]["max_crossings"] > 0, r["parameters"]
 PY
     $bin eval-stereo m.ply --scene sc --samples 20000 --json e.json -q || fail "eval-stereo failed"
     python3 -c "import json; r=json.load(open('e.json'))['results'][0]; assert r['accuracy'][4] > 0.95 and r['completeness'][5] > 0.8, r" \
@@ -244,11 +262,11 @@ PY
     python3 - <<'PY' || fail "bad features report"
 import json
 r = json.load(open("r.json"))
-assert [s["name"] for s in r["stages"]] == ["detection", "clustering", "polylines"], r["stages"]
+assert [s["name"] for s in r["stages"]] == ["detection", "clustering", "polylines"], r["stages"]  # the three steps of 7.2, nothing else
 assert r["counts"]["edge_points"] > 0 and r["counts"]["points"] == 20000, r["counts"]
 PY
     $bin eval-features p.polylines.txt --reference "$data/meshes/cube.off" --json f.json -q || fail "eval-features failed"
-    python3 -c "import json; e=json.load(open('f.json'))['evaluation']; assert 0 <= e['recall'] <= 1 and e['truth_corners'] == 8, e" || fail "bad eval-features"
+    python3 -c "import json; e=json.load(open('f.json'))['evaluation']; assert e['recall'] > 0.95 and e['precision'] > 0.95 and e['recalled_corners'] == e['truth_corners'] == 8, e" || fail "the cube's 12 edges and 8 corners are not found"
     # Quiet means quiet, on a model in millimetres too (polylines 160 long).
     $bin sample "$data/meshes/oblong.off" -n 20000 --seed 1 -o o.ply -q || fail "sample failed"
     $bin features o.ply -o o.txt -q 2> err.txt || fail "features on oblong failed"

@@ -224,7 +224,6 @@ TEST(Normals, ShiftedNeighbourhoodsKeepTheFaceNormalNextToACrease) {
   estimate_normals_at(jet, near_edges, {NormalMethod::Jet, 18});
   PointSet shifted{truth.points, {}, {}};
   estimate_shifted_normals_at(shifted, near_edges, {8, 18});
-  std::printf("mean normal error next to the cube's edges: jet %.2f deg, shifted %.2f deg\n", mean_error_deg(jet), mean_error_deg(shifted));
   EXPECT_GT(mean_error_deg(jet), 10.0);
   EXPECT_LT(mean_error_deg(shifted), 3.0);
   for (std::uint32_t i = 0; i < shifted.size(); ++i)
@@ -252,7 +251,6 @@ TEST(Clean, CreaseAwareNormalsAreOrientedAndSharpAtTheEdges) {
     inward += c < -0.5;  // inverted; a point on an edge may take the other face's normal (c = 0)
     off += std::abs(c) < std::cos(10 * M_PI / 180);
   }
-  std::printf("crease-aware normals on a cube: %zu inverted, %zu more than 10 degrees off, of %zu\n", inward, off, cloud.size());
   EXPECT_EQ(inward, 0u);
   EXPECT_LT(off, cloud.size() / 200);  // jet normals: 2,116 (8.8%) more than 10 degrees off
   CleanOptions unsigned_only;
@@ -319,7 +317,6 @@ TEST(Normals, TangentMstDoesNotFlipAcrossAThinWall) {
   PointSet bare;
   bare.points = truth.points;
   EXPECT_THROW(orient_normals_tangent_mst(bare, 18), InvalidArgument);
-  std::printf("flipped normals on a thin slab: tangent MST %.4f, CGAL MST %.4f\n", ours_flipped, cgal_flipped);
 }
 
 // Sheet parity decides the sign where the material is too thin to enclose
@@ -372,8 +369,6 @@ TEST(Normals, SheetParityVotesDecideThinPlatesAndCavities) {
   }
   std::size_t nested_decided = 0;
   for (signed char v : nested_votes) nested_decided += v != 0;
-  std::printf("sheet parity on a ball in a hollow box: %zu decided (%zu on the cavity's walls), %zu wrong\n", nested_decided,
-              cavity_decided, nested_wrong);
   EXPECT_GT(cavity_decided, 1000u);
   EXPECT_LE(nested_wrong, nested_decided / 1000);
 
@@ -432,7 +427,6 @@ TEST(Normals, ExteriorVotesAnchorTheMstOutwards) {
     return static_cast<double>(count) / static_cast<double>(wedge_truth.size());
   };
   EXPECT_LT(inwards(anchored), 0.05);
-  std::printf("inward normals on a knife-edge wedge: tangent MST %.4f, anchored %.4f\n", inwards(plain), inwards(anchored));
 
   PointSet sheet;
   for (int i = 0; i < 100; ++i)
