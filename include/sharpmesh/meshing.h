@@ -273,8 +273,8 @@ struct SnappingOptions {
   bool points_are_targets = true;
   /// With a spacing, a corner move must also not add mesh area away from the
   /// points (farther than data_present, one point per spacing squared): a
-  /// junction misplaced into a wall drew a spike that no point is near
-  /// (couplingdown 50k, sampling seeds 6 and 7: 1.6 and 1.9 spacings off).
+  /// junction misplaced into a wall draws a spike that no point is near
+  /// (seen on CGAL's couplingdown, one and a half to two spacings off).
   /// 0: not checked.
   double average_spacing = 0;
   /// With a normal per input point: a vertex farther than data_present from

@@ -37,6 +37,62 @@ enum class FeatureMode {
   None,     ///< the PIF baseline (7.3.1)
 };
 
+/// The thresholds of the repairs beyond the thesis, one documented field
+/// each (docs/design-notes.md gives the reasons). Lengths are in average
+/// spacings (avg) or in d'; `noise` is the feature extraction's estimate,
+/// allowed for `noise_deviations` times wherever a distance decides.
+struct ReconstructTuning {
+  /// Automatic normals: a CVCM whose largest eigenvalue is less than this
+  /// many times the next is isotropic (a thin part or a needle tip inside
+  /// the offset radius), and its point takes a jet normal (7.4).
+  double min_cvcm_anisotropy = 20;
+  /// Automatic normals: a Poisson function agreeing with fewer of its CVCM
+  /// normals than this fraction is solved again from jet normals, and the
+  /// function that agrees better is kept.
+  double min_normal_agreement = 0.9;
+  /// Input normals agreeing in sign with an MST orientation on at least this
+  /// fraction of the points (or on at most 1 - it) are used as given; in
+  /// between, each takes the orientation's sign.
+  double input_normal_consensus = 0.9;
+  /// Crease-aware normals replace jet normals only on clouds whose noise is
+  /// below this [avg]: on noisier ones the plane fits are no sharper.
+  double sharpen_max_noise = 0.25;
+  /// Noise deviations allowed wherever a distance decides (data fit, snapping).
+  double noise_deviations = 3;
+  /// A point is off the mesh farther than max(this [avg], the surface
+  /// distance criterion 0.6 d') + noise_deviations x noise.
+  double off_data_min = 1.5;
+  /// The sign repair and the data-fit retry solve Poisson again only for at
+  /// least this many points, or one point in repair_one_point_in when more:
+  /// a few scattered wrong normals barely move the function.
+  std::size_t repair_min_points = 10;
+  std::size_t repair_one_point_in = 5000;
+  /// The data-fit retry's second flip set: the points off the mesh within
+  /// this distance of those against it [avg].
+  double retry_reach = 3;
+  /// Flattening: face planes fitted within min(ball radius x d', this [avg]);
+  /// the rounding is at the data's scale, whatever delta.
+  double flatten_radius = 3;
+  /// Flattening: a vertex moves at most min(flatten_max_move x d',
+  /// flatten_max_move_spacings [avg]), onto a plane whose residual is at
+  /// most flatten_max_residual x d'.
+  double flatten_max_move = 0.25;
+  double flatten_max_move_spacings = 2;
+  double flatten_max_residual = 0.15;
+  /// Snapping: a vertex moves at most this [avg] + the noise allowance
+  /// (the rounding Poisson leaves is 1-1.5 spacings).
+  double snap_max_move = 2;
+  /// Snapping: corners and data points the mesh misses by more than these
+  /// [avg] + the noise allowance take a vertex.
+  double snap_corner_distance = 0.25;
+  double snap_data_distance = 0.75;
+  /// Snapping: a move must not take the facets farther from the points
+  /// within this radius [avg].
+  double snap_support_radius = 1.5;
+  /// Throws InvalidArgument naming the field that is out of its range.
+  void check() const;
+};
+
 struct ReconstructOptions {
   double delta = 3.5;  ///< d' = delta * avg (7.3.2; Fig. 7.10a)
   int spacing_k = 6;   ///< avg = mean distance to the 6 nearest neighbours (7.3.2)
@@ -79,10 +135,9 @@ struct ReconstructOptions {
   /// edge are moved onto the plane of the data's face (flatten_next_to_features).
   bool flatten_features = true;
   /// Beyond the thesis: corners (junctions of two or more polylines) and,
-  /// on clean clouds, input points the mesh misses by more than 0.25 and 0.75
-  /// average spacings each take a mesh vertex near them, within 2
-  /// (snap_to_corners_and_data). With extracted features only: the PIF
-  /// baseline stays the thesis's.
+  /// on clean clouds, input points the mesh misses each take a mesh vertex
+  /// near them (snap_to_corners_and_data; distances in `tuning`). With
+  /// extracted features only: the PIF baseline stays the thesis's.
   bool snap_vertices = true;
   /// Beyond the thesis: the facets of the output that cross others are cut
   /// out with a ring of neighbours and the holes filled
@@ -111,12 +166,12 @@ struct ReconstructOptions {
   /// Poisson vertices half-way across material and gaps 1-6 spacings thick
   /// (thin_part_vertices; beyond the thesis, issue 36).
   bool thin_part_vertices = true;
-  /// After meshing, when input points lie farther than max(1.5 avg, the
-  /// surface-distance criterion) + 3 x the noise from the mesh with normals
-  /// against its closest facets (from 10 points or 0.02%), flip their
-  /// normals (and those around them), solve and mesh again, and keep the
-  /// new mesh when it leaves a quarter fewer such points, no more points
-  /// off in all and none farther (beyond the thesis; with repair_normal_signs).
+  /// After meshing, when input points lie off the mesh (tuning.off_data_min)
+  /// with normals against its closest facets (enough of them:
+  /// tuning.repair_min_points), flip their normals (and those around them),
+  /// solve and mesh again, and keep the new mesh when it leaves a quarter
+  /// fewer such points, no more points off in all and none farther (beyond
+  /// the thesis; with repair_normal_signs).
   bool refit_off_data = true;
   std::size_t max_facets = 5'000'000;
   /// Ball-size queries the feature protection may make per point of the
@@ -129,6 +184,7 @@ struct ReconstructOptions {
   /// Worker threads of this call's parallel loops (0: every core). The
   /// limit holds for this call only, not for the process.
   int threads = 0;
+  ReconstructTuning tuning;  ///< the repairs' thresholds
   void check(std::size_t n) const;
 };
 

@@ -32,7 +32,7 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
     fit = fit_to_data(result.mesh, in.points.points, oriented.normals, off_distance);  // oriented: the input's points
   }
   const bool may_retry = options.refit_off_data && options.repair_normal_signs && options.check_input_normals;
-  const std::size_t worth_a_retry = std::max<std::size_t>(10, oriented.size() / 5000);
+  const std::size_t worth_a_retry = enough_for_a_repair(oriented.size(), options.tuning);
   result.data_fit.off_data_points_before_retry = fit.off.size();
   if (may_retry && fit.off_and_against.size() >= worth_a_retry) {
     // Two flip sets: the points off and against the mesh, and all the
@@ -40,7 +40,7 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
     // an inverted patch agrees with the wrong facets; which set is better
     // depends on the part, so both are tried).
     std::vector<std::vector<std::uint32_t>> flip_sets{fit.off_and_against};
-    std::vector<std::uint32_t> region = within_reach(in.points.points, fit.off, fit.off_and_against, 3 * result.average_spacing);
+    std::vector<std::uint32_t> region = within_reach(in.points.points, fit.off, fit.off_and_against, options.tuning.retry_reach * result.average_spacing);
     if (region.size() > fit.off_and_against.size()) flip_sets.push_back(std::move(region));
     std::vector<StageTiming> stages = result.stages;
     std::optional<ReconstructResult> best;

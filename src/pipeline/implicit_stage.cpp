@@ -92,9 +92,7 @@ std::size_t ImplicitSolver::repair_signs(PointSet& oriented, std::unique_ptr<Imp
                                          PoissonDiagnostics& diagnostics) {
   const double h = 0.5 * result_.average_spacing;
   std::vector<std::uint32_t> wrong = disagreeing_normals(*surface, oriented, h);
-  // A few scattered wrong normals barely move the function: no new solve
-  // for fewer than 10 (or 0.02% of the points).
-  const std::size_t worth_a_solve = std::max<std::size_t>(10, oriented.size() / 5000);
+  const std::size_t worth_a_solve = enough_for_a_repair(oriented.size(), in_.options.tuning);
   std::size_t flipped = 0;
   for (int round = 0; round < 3 && wrong.size() >= worth_a_solve; ++round) {
     PointSet repaired = oriented;
@@ -140,7 +138,7 @@ ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bo
   } catch (const NumericalFailure&) {
     if (!may_fall_back) throw;
   }
-  if (may_fall_back && stage.diagnostics.normal_agreement < 0.9) {
+  if (may_fall_back && stage.diagnostics.normal_agreement < options.tuning.min_normal_agreement) {
     PoissonDiagnostics fallback;
     try {
       PointSet jet = normals(false, "normals (fallback)");

@@ -44,7 +44,8 @@ InputNormals check_input_normals(PointSet& cloud, const ReconstructOptions& opti
   std::size_t agree = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) agree += dot(reference.normals[i], cloud.normals[i]) > 0;
   agreement = static_cast<double>(agree) / static_cast<double>(usable);
-  if (agreement <= 0.1 || agreement >= 0.9) return InputNormals::Used;
+  const double consensus = options.tuning.input_normal_consensus;
+  if (agreement <= 1 - consensus || agreement >= consensus) return InputNormals::Used;
   for (std::size_t i = 0; i < cloud.size(); ++i)
     if (dot(reference.normals[i], cloud.normals[i]) < 0) cloud.normals[i] = -1.0 * cloud.normals[i];
   return InputNormals::Reoriented;

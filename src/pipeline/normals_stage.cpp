@@ -46,10 +46,11 @@ std::vector<std::uint32_t> cvcm_normals(PointSet& cloud, const FeatureResult& fe
 /// point to the next and the MST loses the sign, which it keeps with the
 /// smoothly turning jet normals.
 /// Returns the number replaced (0 for denoised or noisier clouds).
-std::size_t sharpen_normals(PointSet& oriented, const std::vector<std::uint32_t>& ids, const FeatureResult& features) {
+std::size_t sharpen_normals(PointSet& oriented, const std::vector<std::uint32_t>& ids, const FeatureResult& features,
+                            double max_noise) {
   const int last = static_cast<int>(oriented.size()) - 1;
   const double noise = features.average_spacing > 0 ? features.noise_estimate / features.average_spacing : 1.0;
-  if (features.denoise_passes > 0 || !(noise < 0.25) || ids.empty()) return 0;
+  if (features.denoise_passes > 0 || !(noise < max_noise) || ids.empty()) return 0;
   ShiftedNormalOptions options;
   options.k = std::min(last, static_cast<int>(std::lround(std::clamp(8 + 100 * noise, 8.0, 30.0))));
   options.candidates = std::min(last, std::max(18, 3 * options.k / 2));
@@ -87,7 +88,7 @@ PointSet oriented_normals(const PipelineInput& in, bool from_cvcm, ReconstructRe
   std::vector<std::uint32_t> isotropic;
   if (from_cvcm) {
     // Automatic normals replace the isotropic CVCM ones; --normals cvcm is the thesis's 7.4 throughout.
-    const double min_anisotropy = options.normal_source == NormalSource::Automatic ? 20.0 : 0.0;
+    const double min_anisotropy = options.normal_source == NormalSource::Automatic ? options.tuning.min_cvcm_anisotropy : 0.0;
     isotropic = cvcm_normals(oriented, result.features, options.normals, min_anisotropy);
     result.normals.isotropic_cvcm_normals = isotropic.size();
   } else {
@@ -111,7 +112,7 @@ PointSet oriented_normals(const PipelineInput& in, bool from_cvcm, ReconstructRe
   // (enclosed_orientation.cpp); not on the PIF baseline (--no-features).
   if (automatic && options.repair_enclosed_normals)
     result.normals.enclosed_flipped_normals = repair_enclosed_normals(oriented, result.average_spacing);
-  if (from_cvcm && automatic) result.normals.sharpened_normals = sharpen_normals(oriented, isotropic, result.features);
+  if (from_cvcm && automatic) result.normals.sharpened_normals = sharpen_normals(oriented, isotropic, result.features, options.tuning.sharpen_max_noise);
   return oriented;
 }
 

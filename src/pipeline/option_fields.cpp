@@ -38,6 +38,42 @@ OptionField<O> normals_field() {
   return f;
 }
 
+// The thresholds of the repairs (ReconstructTuning), under one heading.
+void add_tuning_fields(std::vector<OptionField<O>>& f) {
+  using detail::member_field;
+  using T = ReconstructTuning;
+  const char* group = "Tuning of the repairs (beyond the thesis)";
+  const std::vector<OptionField<T>> tuning = {
+      member_field("min_cvcm_anisotropy", "Automatic normals: a CVCM less anisotropic than this (largest over next eigenvalue) takes a jet normal",
+                   "", &T::min_cvcm_anisotropy),
+      member_field("min_normal_agreement", "Automatic normals: solve again from jet normals when Poisson agrees with fewer CVCM normals",
+                   "fraction", &T::min_normal_agreement),
+      member_field("input_normal_consensus", "Input normals agreeing in sign with an MST orientation on this share (or 1 - it) are used as given",
+                   "fraction", &T::input_normal_consensus),
+      member_field("sharpen_max_noise", "Crease-aware normals only on clouds less noisy than this", "average spacings", &T::sharpen_max_noise),
+      member_field("noise_deviations", "Noise deviations allowed wherever a distance decides (data fit, snapping)", "", &T::noise_deviations),
+      member_field("off_data_min", "A point is off the mesh beyond max(this, 0.6 d') + the noise allowance", "average spacings",
+                   &T::off_data_min),
+      member_field("repair_min_points", "The sign repair and the data-fit retry solve again for at least this many points", "",
+                   &T::repair_min_points),
+      member_field("repair_one_point_in", "Or one point in this many, when that is more", "", &T::repair_one_point_in),
+      member_field("retry_reach", "Data-fit retry: also flip the points off the mesh this close to those against it", "average spacings",
+                   &T::retry_reach),
+      member_field("flatten_radius", "Flattening: fit face planes within min(ball radius, this)", "average spacings", &T::flatten_radius),
+      member_field("flatten_max_move", "Flattening: move a vertex at most min(this x d', flatten_max_move_spacings)", "d'",
+                   &T::flatten_max_move),
+      member_field("flatten_max_move_spacings", "Flattening: the cap of a move in spacings", "average spacings", &T::flatten_max_move_spacings),
+      member_field("flatten_max_residual", "Flattening: only onto planes fitting the data this closely", "d'", &T::flatten_max_residual),
+      member_field("snap_max_move", "Snapping: move a vertex at most this + the noise allowance", "average spacings", &T::snap_max_move),
+      member_field("snap_corner_distance", "Snapping: corners the mesh misses by more than this + the noise allowance take a vertex",
+                   "average spacings", &T::snap_corner_distance),
+      member_field("snap_data_distance", "Snapping: data points the mesh misses by more than this + the noise allowance take a vertex",
+                   "average spacings", &T::snap_data_distance),
+      member_field("snap_support_radius", "Snapping: a move may not take facets away from the points within this radius",
+                   "average spacings", &T::snap_support_radius)};
+  for (const OptionField<T>& field : tuning) f.push_back(detail::nested_field(field, &O::tuning, group));
+}
+
 std::vector<OptionField<O>> reconstruct_fields() {
   using detail::member_field;
   using detail::nested_field;
@@ -75,8 +111,8 @@ std::vector<OptionField<O>> reconstruct_fields() {
                    "thesis; off: they stay on the Poisson surface)",
                    "", &O::flatten_features),
       member_field("snapping",
-                   "Move vertices (2 avg at most) onto the corners and data points the mesh misses by more than 0.25 and 0.75 "
-                   "avg (beyond the thesis; with extracted features only)",
+                   "Move vertices onto the corners and data points the mesh misses (beyond the thesis; with extracted features "
+                   "only; distances: --snap-*)",
                    "", &O::snap_vertices),
       member_field("intersection_repair",
                    "Cut the facets that cross others out with a ring of neighbours and fill the holes (beyond the thesis)", "",
@@ -120,6 +156,7 @@ std::vector<OptionField<O>> reconstruct_fields() {
       member_field("threads", "Worker threads of this reconstruction (0: every core)", "", &O::threads),
   };
   for (const OptionField<FeatureOptions>& feature : feature_option_fields()) f.push_back(nested_field(feature, &O::features));
+  add_tuning_fields(f);
   return f;
 }
 

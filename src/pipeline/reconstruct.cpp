@@ -4,6 +4,8 @@
 #include "sharpmesh/reconstruct.h"
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "core/parallel.h"
 #include "core/recentering.h"
@@ -47,7 +49,27 @@ const char* to_string(NormalOrigin origin) {
   return "?";
 }
 
+void ReconstructTuning::check() const {
+  const std::pair<const char*, double> lengths[] = {
+      {"sharpen_max_noise", sharpen_max_noise},   {"noise_deviations", noise_deviations},
+      {"off_data_min", off_data_min},             {"retry_reach", retry_reach},
+      {"flatten_radius", flatten_radius},         {"flatten_max_move", flatten_max_move},
+      {"flatten_max_move_spacings", flatten_max_move_spacings}, {"flatten_max_residual", flatten_max_residual},
+      {"snap_max_move", snap_max_move},           {"snap_corner_distance", snap_corner_distance},
+      {"snap_data_distance", snap_data_distance}, {"snap_support_radius", snap_support_radius},
+      {"min_cvcm_anisotropy", min_cvcm_anisotropy}};
+  for (const auto& [name, value] : lengths)
+    if (!(value >= 0) || !std::isfinite(value))
+      throw InvalidArgument(std::string(name) + " must be a non-negative number (got " + format_number(value) + ")");
+  if (!(min_normal_agreement >= 0 && min_normal_agreement <= 1))
+    throw InvalidArgument("min_normal_agreement is a fraction in [0, 1] (got " + format_number(min_normal_agreement) + ")");
+  if (!(input_normal_consensus >= 0.5 && input_normal_consensus <= 1))
+    throw InvalidArgument("input_normal_consensus is a fraction in [0.5, 1] (got " + format_number(input_normal_consensus) + ")");
+  if (repair_one_point_in == 0) throw InvalidArgument("repair_one_point_in must be at least 1");
+}
+
 void ReconstructOptions::check(std::size_t n) const {
+  tuning.check();
   if (threads < 0) throw InvalidArgument("threads must be 0 (every core) or a positive count (got " + format_number(threads) + ")");
   if (!(protection_budget >= 0) || !std::isfinite(protection_budget))
     throw InvalidArgument("protection budget must be a non-negative number of queries per polyline point (got " +

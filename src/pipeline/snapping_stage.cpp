@@ -22,11 +22,12 @@ void snap_to_data(const PipelineInput& in, FitStage& stage, ReconstructResult& r
       if (j.degree >= 2) corners.push_back(j.position);
     const bool clean = result.features.denoise_passes == 0 && noise < kCleanNoiseRatio * result.average_spacing;
     SnappingOptions snapping;
-    // The rounding left is 1-1.5 spacings; a vertex moves at most 2.
-    snapping.max_move = 2 * result.average_spacing + 3 * noise;
-    snapping.corner_present = 0.25 * result.average_spacing + 3 * noise;
-    snapping.data_present = 0.75 * result.average_spacing + 3 * noise;
-    snapping.support_radius = 1.5 * result.average_spacing;
+    const ReconstructTuning& tuning = options.tuning;
+    const double allowance = tuning.noise_deviations * noise;
+    snapping.max_move = tuning.snap_max_move * result.average_spacing + allowance;
+    snapping.corner_present = tuning.snap_corner_distance * result.average_spacing + allowance;
+    snapping.data_present = tuning.snap_data_distance * result.average_spacing + allowance;
+    snapping.support_radius = tuning.snap_support_radius * result.average_spacing;
     snapping.points_are_targets = clean;
     snapping.average_spacing = result.average_spacing;
     if (clean) snapping.point_normals = stage.normals;

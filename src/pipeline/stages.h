@@ -81,6 +81,10 @@ ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bo
 /// component off the data.
 double off_data_distance(const ReconstructResult& r, const ReconstructOptions& options);
 
+/// Points a repair needs before it solves Poisson again
+/// (ReconstructTuning::repair_min_points, repair_one_point_in).
+std::size_t enough_for_a_repair(std::size_t points, const ReconstructTuning& tuning);
+
 /// Restriction, seeds, refinement with protecting balls, flattening and the
 /// open-surface trim of one implicit function into `out.mesh`. Stage names
 /// carry `retry_prefix`.

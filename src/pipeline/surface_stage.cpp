@@ -49,11 +49,15 @@ void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult&
 
 /// Distance beyond which an input point is off the mesh, or a mesh
 /// component off the data: the refinement may leave the implicit surface by
-/// its surface-distance criterion (0.6 d') and no more, plus three noise
-/// deviations.
+/// its surface-distance criterion (0.6 d') and no more, plus the noise.
 double off_data_distance(const ReconstructResult& r, const ReconstructOptions& options) {
   const double noise = options.feature_mode == FeatureMode::Extract ? r.features.noise_estimate : 0.0;
-  return std::max(1.5 * r.average_spacing, r.criteria.distance) + 3 * noise;
+  const ReconstructTuning& tuning = options.tuning;
+  return std::max(tuning.off_data_min * r.average_spacing, r.criteria.distance) + tuning.noise_deviations * noise;
+}
+
+std::size_t enough_for_a_repair(std::size_t points, const ReconstructTuning& tuning) {
+  return std::max<std::size_t>(tuning.repair_min_points, points / std::max<std::size_t>(tuning.repair_one_point_in, 1));
 }
 
 void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> function, const PointSet& normals,
@@ -103,9 +107,10 @@ void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> func
     FlatteningOptions flattening;
     // The rounding is at the data's scale, a few spacings whatever delta;
     // a plane over a larger radius would cut through curved faces.
-    flattening.radius = std::min(options.ball_radius * out.d_prime, 3 * out.average_spacing);
-    flattening.max_move = std::min(0.25 * out.d_prime, 2 * out.average_spacing);
-    flattening.max_residual = 0.15 * out.d_prime;
+    const ReconstructTuning& tuning = options.tuning;
+    flattening.radius = std::min(options.ball_radius * out.d_prime, tuning.flatten_radius * out.average_spacing);
+    flattening.max_move = std::min(tuning.flatten_max_move * out.d_prime, tuning.flatten_max_move_spacings * out.average_spacing);
+    flattening.max_residual = tuning.flatten_max_residual * out.d_prime;
     const std::vector<Vec3> before = out.mesh.vertices;
     out.repairs.flattened_vertices =
         flatten_next_to_features(out.mesh, out.meshing.feature_edges, normals.points, normals.normals, flattening);

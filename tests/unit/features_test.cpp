@@ -129,7 +129,7 @@ TEST(FeatureGraph, CleanCloudsAreNotDenoised) {
 // noise. Over 8 neighbours it is 6x smaller, as curvature's is and noise's
 // is not: it is not smoothed (smoothing took its Hausdorff distance from
 // 7.2 to 14.2 U). The same cloud with 1% noise still is.
-TEST(FeatureGraph, CurvedButCleanCloudsAreNotDenoised) {
+TEST(CgalModels, CurvedButCleanCloudsAreNotDenoised) {
   const std::string path = test::data_file("meshes/cheese.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh cheese = read_mesh(path);

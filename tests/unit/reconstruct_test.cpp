@@ -221,7 +221,7 @@ TEST(FeaturePreservingReconstruction, OpenSheetIsTrimmedToTheData) {
 
 // 30k points: PIF rounds the sharp edges, whose error dominates; the 200k
 // claim (< 1% of the diagonal) is the CLI test cli.fandisk-200k.
-TEST(Reconstruct, FandiskThirtyThousandPointsWithinTwoPercentOfTheDiagonal) {
+TEST(CgalModels, FandiskThirtyThousandPointsWithinTwoPercentOfTheDiagonal) {
   const std::string path = test::data_file("meshes/fandisk.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh fandisk = read_mesh(path);
@@ -238,7 +238,7 @@ TEST(Reconstruct, FandiskThirtyThousandPointsWithinTwoPercentOfTheDiagonal) {
 // around junctions and are reported as gaps), 97% with the thesis's
 // polylines (but 5,400 facets at 3.0-3.4 U instead of 6,000 at 1.5-1.9 U
 // over two CLI samples).
-TEST(FeaturePreservingReconstruction, FandiskThirtyThousandPointsCloserThanPif) {
+TEST(CgalModels, FandiskThirtyThousandPointsCloserThanPif) {
   const std::string path = test::data_file("meshes/fandisk.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh fandisk = read_mesh(path);
@@ -271,7 +271,7 @@ TEST(FeaturePreservingReconstruction, FandiskThirtyThousandPointsCloserThanPif) 
 // manifold and close to the model, with most polylines kept. A runaway, if
 // one happens, is stopped before the facet count the data suggests. With
 // the thesis's polylines (corner points left out) and with the default's.
-TEST(FeaturePreservingReconstruction, CouplingdownMeshesDespiteCloseFeatures) {
+TEST(CgalModels, CouplingdownMeshesDespiteCloseFeatures) {
   const std::string path = test::data_file("meshes/couplingdown.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh part = read_mesh(path);
@@ -287,7 +287,7 @@ TEST(FeaturePreservingReconstruction, CouplingdownMeshesDespiteCloseFeatures) {
   expect_valid_and_close(r.mesh, part, 0.02);
 }
 
-TEST(FeaturePreservingReconstruction, CouplingdownDefaultPipelineGivesAValidMesh) {
+TEST(CgalModels, CouplingdownDefaultPipelineGivesAValidMesh) {
   const std::string path = test::data_file("meshes/couplingdown.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh part = read_mesh(path);
@@ -322,7 +322,7 @@ TEST(Reconstruct, PointsOffARoundedEdgeStartNoDataFitRetry) {
 // right from the start) and without the Poisson vertices in thin parts
 // (with them 14 points stay off the first mesh, none against it, and no
 // retry starts).
-TEST(FeaturePreservingReconstruction, PointsOffTheMeshGetTheirNormalsFlippedAndARetry) {
+TEST(CgalModels, PointsOffTheMeshGetTheirNormalsFlippedAndARetry) {
   const std::string path = test::data_file("meshes/couplingdown.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh part = read_mesh(path);
@@ -343,7 +343,7 @@ TEST(FeaturePreservingReconstruction, PointsOffTheMeshGetTheirNormalsFlippedAndA
 // The same cloud (MST from one seed) with the winding-number repair: the
 // wall is flipped back before Poisson and the first mesh already fits the
 // data. With the default anchors as well, nothing is left off the mesh.
-TEST(FeaturePreservingReconstruction, TheWindingRepairFlipsTheInvertedHoleWallBeforePoisson) {
+TEST(CgalModels, TheWindingRepairFlipsTheInvertedHoleWallBeforePoisson) {
   const std::string path = test::data_file("meshes/couplingdown.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh part = read_mesh(path);
@@ -368,7 +368,7 @@ TEST(FeaturePreservingReconstruction, TheWindingRepairFlipsTheInvertedHoleWallBe
 // misses are moved onto them. Measured 1.37 U (diagonal / 200); 1.75 U
 // without snapping. CGAL's "might result in a crash" warning about its ball
 // shrinking goes to the report, not to stderr.
-TEST(FeaturePreservingReconstruction, CouplingdownCornersAndThinWallTopsAreSnappedOnto) {
+TEST(CgalModels, CouplingdownCornersAndThinWallTopsAreSnappedOnto) {
   const std::string path = test::data_file("meshes/couplingdown.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh part = read_mesh(path);
@@ -392,7 +392,7 @@ TEST(FeaturePreservingReconstruction, CouplingdownCornersAndThinWallTopsAreSnapp
 // The plate is about two spacings thick: its two faces are meshed apart
 // (thin_part_vertices, the facets bounded by the thickness), and the mesh
 // stays open where the reference is.
-TEST(FeaturePreservingReconstruction, BladeOpenPlateGivesAnOpenMeshCloseToIt) {
+TEST(CgalModels, BladeOpenPlateGivesAnOpenMeshCloseToIt) {
   const std::string path = test::data_file("meshes/blade.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh blade = read_mesh(path);
@@ -406,7 +406,7 @@ TEST(FeaturePreservingReconstruction, BladeOpenPlateGivesAnOpenMeshCloseToIt) {
 // and its main axis no normal; those points take jet normals, and the
 // closed model comes out closed (with CVCM normals throughout the MST
 // inverted 18% of them and the trimmed mesh had 600 boundary edges).
-TEST(FeaturePreservingReconstruction, SpoolFlangesKeepTheSurfaceClosed) {
+TEST(CgalModels, SpoolFlangesKeepTheSurfaceClosed) {
   const std::string path = test::data_file("meshes/spool.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh spool = read_mesh(path);
@@ -421,7 +421,7 @@ TEST(FeaturePreservingReconstruction, SpoolFlangesKeepTheSurfaceClosed) {
 // Poisson function that disagreed with them (refused). Automatic normals
 // stay CVCM normals overall and take jet normals where the CVCM is
 // isotropic, and the function agrees with them.
-TEST(FeaturePreservingReconstruction, SpikyStarKeepsCvcmNormalsAndTakesJetOnesWhereTheCvcmIsIsotropic) {
+TEST(CgalModels, SpikyStarKeepsCvcmNormalsAndTakesJetOnesWhereTheCvcmIsIsotropic) {
   const std::string path = test::data_file("meshes/star.off");
   if (path.empty()) GTEST_SKIP() << "CGAL data not fetched (scripts/fetch-data)";
   const SurfaceMesh star = read_mesh(path);
@@ -618,6 +618,30 @@ TEST(Reconstruct, NormalsStageAloneOrientsAClosedPartOutwards) {
   EXPECT_EQ(given.normals.normal_origin, NormalOrigin::Input);
   EXPECT_FALSE(given.normals.normals_estimated);
   for (std::size_t i = 0; i < exact.size(); ++i) EXPECT_GT(dot(given.points.normals[i], exact.normals[i]), 0.999) << i;
+}
+
+// The repairs' thresholds are options like the others: one reaches its
+// stage (no CVCM is isotropic below an anisotropy of 0, every one is below
+// an unreachable anisotropy), and values out of range are refused by name.
+TEST(Reconstruct, TuningFieldsReachTheirStageAndAreChecked) {
+  const PointSet cloud = sample(test::chamfered_cube_mesh(0.3), 10000);
+  ReconstructOptions none;
+  none.tuning.min_cvcm_anisotropy = 0;
+  const NormalsResult kept = reconstruct_normals(cloud, none);
+  EXPECT_EQ(kept.normals.normal_origin, NormalOrigin::Cvcm);
+  EXPECT_EQ(kept.normals.isotropic_cvcm_normals, 0u);
+  ReconstructOptions all;
+  all.tuning.min_cvcm_anisotropy = 1e300;
+  EXPECT_EQ(reconstruct_normals(cloud, all).normals.isotropic_cvcm_normals, kept.points.size());
+  ReconstructOptions bad;
+  bad.tuning.snap_max_move = -1;
+  EXPECT_THROW(bad.check(cloud.size()), InvalidArgument);
+  bad = {};
+  bad.tuning.input_normal_consensus = 0.2;
+  EXPECT_THROW(bad.check(cloud.size()), InvalidArgument);
+  bad = {};
+  bad.tuning.repair_one_point_in = 0;
+  EXPECT_THROW(bad.check(cloud.size()), InvalidArgument);
 }
 
 TEST(Reconstruct, RejectsTooFewPoints) {
