@@ -33,9 +33,9 @@ readme-figure: demo
 test: build data
 	@ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
 
-# ASan and UBSan over the library's unit tests (but those on CGAL's models at
-# their real sizes: label `models`) and the adversarial inputs; only the two
-# executables those need, not the Python module, viewer or examples.
+# ASan and UBSan over the library's unit tests (but those on 30,000 points or
+# more: label `large`) and the adversarial inputs; only the two executables
+# those need, not the Python module, viewer or examples.
 test-sanitize: data
 	@scripts/install-deps --sanitize
 	@cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHARPMESH_SANITIZE=ON >/dev/null

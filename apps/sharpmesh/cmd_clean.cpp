@@ -10,27 +10,93 @@
 
 namespace sharpmesh::cli {
 
+namespace {
+
+/// The flags of `clean`, as given.
+struct Options {
+  std::string input, output;
+  std::vector<int> classes;
+  double outlier_percentage = -1;
+  int outlier_k = 24;
+  double outlier_sigmas = -1;
+  int sigma_k = 150;
+  bool sigma_relative = false;
+  std::optional<double> grid_cell;  ///< multiples of the average spacing
+  double random_percentage = -1;
+  int smooth_k = 0;
+  std::string normals;
+  int normal_k = 18;
+  bool orient = false;
+  int orient_k = 18;
+  std::string orient_method = "tangent";
+  bool no_winding_repair = false;
+  std::uint64_t seed = 0;
+  bool ascii = false;
+};
+
+void run_clean(const Options& o, const CommonOptions& common) {
+  check_output(o.output, "points");
+  check_output(common.report, "report");
+  CleanOptions options;
+  if (o.outlier_percentage >= 0) options.outliers = PercentageOutlierOptions{o.outlier_k, o.outlier_percentage};
+  if (o.outlier_sigmas != -1) options.outliers_sigma = SigmaOutlierOptions{o.sigma_k, o.outlier_sigmas, o.sigma_relative};
+  options.grid_cell = o.grid_cell;
+  if (o.random_percentage >= 0) options.random_percentage = o.random_percentage;
+  options.seed = o.seed;
+  if (o.smooth_k != 0) options.smoothing = JetSmoothingOptions{o.smooth_k};
+  if (!o.normals.empty())
+    options.normals = NormalEstimationOptions{o.normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, o.normal_k};
+  if (o.normals == "shifted") options.crease_aware_normals = ShiftedNormalOptions{};
+  if (o.orient)
+    options.orientation = o.orient_method == "cgal" ? CleanOptions::Orientation::CgalMst : CleanOptions::Orientation::TangentMst;
+  options.orient_k = o.orient_k;
+  options.repair_enclosed = !o.no_winding_repair;
+  options.check();
+  ProgressPrinter printer(common.quiet);
+  std::vector<StageTiming> stages;
+  PointSet points;
+  {
+    StageTimer stage(stages, "read");
+    points = read_cloud(o.input, o.classes);
+  }
+  check_point_set(points, 1, o.input.c_str());
+  CleanStats stats;
+  try {
+    stats = clean_point_set(points, options, printer.callback());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(o.input + ": " + e.what());
+  }
+  stages.insert(stages.end(), stats.stages.begin(), stats.stages.end());
+  nlohmann::json counts = {{"input", stats.input}, {"output", stats.output}};
+  if (options.outliers) counts["removed_outliers"] = stats.removed_outliers;
+  if (options.outliers_sigma) counts["removed_outliers_sigma"] = stats.removed_outliers_sigma;
+  if (options.grid_cell) counts["removed_grid"] = stats.removed_grid;
+  if (options.random_percentage) counts["removed_random"] = stats.removed_random;
+  if (options.orientation == CleanOptions::Orientation::CgalMst) counts["unoriented_removed"] = stats.unoriented_removed;
+  if (options.orientation == CleanOptions::Orientation::TangentMst) counts["orientation_components"] = stats.orientation_components;
+  if (options.orientation == CleanOptions::Orientation::TangentMst && options.repair_enclosed) counts["enclosed_flipped_normals"] = stats.enclosed_flipped;
+  {
+    StageTimer stage(stages, "write");
+    write_point_set(o.output, points, o.ascii ? PlyFormat::Ascii : PlyFormat::Binary);
+  }
+  if (!common.quiet) printer.message("clean: " + std::to_string(stats.input) + " -> " +
+                                      std::to_string(points.size()) + " points, written to " + o.output);
+  write_report(common.report, {{"command", "clean"},
+                                {"input", o.input},
+                                {"output", o.output},
+                                {"parameters",
+                                 {{"outliers", o.outlier_percentage}, {"outlier_k", o.outlier_k},
+                                  {"outliers_sigma", o.outlier_sigmas}, {"sigma_k", o.sigma_k}, {"sigma_relative", o.sigma_relative},
+                                  {"grid_cell_in_average_spacings", o.grid_cell ? nlohmann::json(*o.grid_cell) : nlohmann::json()}, {"random", o.random_percentage},
+                                  {"seed", o.seed}, {"smooth_k", o.smooth_k}, {"normals", o.normals},
+                                  {"normal_k", o.normal_k}, {"orient", o.orient}, {"orient_k", o.orient_k}, {"orient_method", o.orient_method}}},
+                                {"counts", counts},
+                                {"stages", stages_json(stages)}});
+}
+
+}  // namespace
+
 Command add_clean(CLI::App& app) {
-  struct Options {
-    std::string input, output;
-    std::vector<int> classes;
-    double outlier_percentage = -1;
-    int outlier_k = 24;
-    double outlier_sigmas = -1;
-    int sigma_k = 150;
-    bool sigma_relative = false;
-    std::optional<double> grid_cell;  ///< multiples of the average spacing
-    double random_percentage = -1;
-    int smooth_k = 0;
-    std::string normals;
-    int normal_k = 18;
-    bool orient = false;
-    int orient_k = 18;
-    std::string orient_method = "tangent";
-    bool no_winding_repair = false;
-    std::uint64_t seed = 0;
-    bool ascii = false;
-  };
   auto o = std::make_shared<Options>();
   auto common = std::make_shared<CommonOptions>();
   CLI::App* sub = app.add_subcommand("clean", "Point-set toolbox (thesis App. A): outliers, simplification, smoothing, normals");
@@ -72,65 +138,7 @@ Command add_clean(CLI::App& app) {
   sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
   common->add_to(*sub);
 
-  auto run = [o, common] {
-    check_output(o->output, "points");
-    check_output(common->report, "report");
-    CleanOptions options;
-    if (o->outlier_percentage >= 0) options.outliers = PercentageOutlierOptions{o->outlier_k, o->outlier_percentage};
-    if (o->outlier_sigmas != -1) options.outliers_sigma = SigmaOutlierOptions{o->sigma_k, o->outlier_sigmas, o->sigma_relative};
-    options.grid_cell = o->grid_cell;
-    if (o->random_percentage >= 0) options.random_percentage = o->random_percentage;
-    options.seed = o->seed;
-    if (o->smooth_k != 0) options.smoothing = JetSmoothingOptions{o->smooth_k};
-    if (!o->normals.empty())
-      options.normals = NormalEstimationOptions{o->normals == "pca" ? NormalMethod::Pca : NormalMethod::Jet, o->normal_k};
-    if (o->normals == "shifted") options.crease_aware_normals = ShiftedNormalOptions{};
-    if (o->orient)
-      options.orientation = o->orient_method == "cgal" ? CleanOptions::Orientation::CgalMst : CleanOptions::Orientation::TangentMst;
-    options.orient_k = o->orient_k;
-    options.repair_enclosed = !o->no_winding_repair;
-    options.check();
-    ProgressPrinter printer(common->quiet);
-    std::vector<StageTiming> stages;
-    PointSet points;
-    {
-      StageTimer stage(stages, "read");
-      points = read_cloud(o->input, o->classes);
-    }
-    check_point_set(points, 1, o->input.c_str());
-    CleanStats stats;
-    try {
-      stats = clean_point_set(points, options, printer.callback());
-    } catch (const InvalidInput& e) {
-      throw InvalidInput(o->input + ": " + e.what());
-    }
-    stages.insert(stages.end(), stats.stages.begin(), stats.stages.end());
-    nlohmann::json counts = {{"input", stats.input}, {"output", stats.output}};
-    if (options.outliers) counts["removed_outliers"] = stats.removed_outliers;
-    if (options.outliers_sigma) counts["removed_outliers_sigma"] = stats.removed_outliers_sigma;
-    if (options.grid_cell) counts["removed_grid"] = stats.removed_grid;
-    if (options.random_percentage) counts["removed_random"] = stats.removed_random;
-    if (options.orientation == CleanOptions::Orientation::CgalMst) counts["unoriented_removed"] = stats.unoriented_removed;
-    if (options.orientation == CleanOptions::Orientation::TangentMst) counts["orientation_components"] = stats.orientation_components;
-    if (options.orientation == CleanOptions::Orientation::TangentMst && options.repair_enclosed) counts["enclosed_flipped_normals"] = stats.enclosed_flipped;
-    {
-      StageTimer stage(stages, "write");
-      write_point_set(o->output, points, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
-    }
-    if (!common->quiet) printer.message("clean: " + std::to_string(stats.input) + " -> " +
-                                        std::to_string(points.size()) + " points, written to " + o->output);
-    write_report(common->report, {{"command", "clean"},
-                                  {"input", o->input},
-                                  {"output", o->output},
-                                  {"parameters",
-                                   {{"outliers", o->outlier_percentage}, {"outlier_k", o->outlier_k},
-                                    {"outliers_sigma", o->outlier_sigmas}, {"sigma_k", o->sigma_k}, {"sigma_relative", o->sigma_relative},
-                                    {"grid_cell_in_average_spacings", o->grid_cell ? nlohmann::json(*o->grid_cell) : nlohmann::json()}, {"random", o->random_percentage},
-                                    {"seed", o->seed}, {"smooth_k", o->smooth_k}, {"normals", o->normals},
-                                    {"normal_k", o->normal_k}, {"orient", o->orient}, {"orient_k", o->orient_k}, {"orient_method", o->orient_method}}},
-                                  {"counts", counts},
-                                  {"stages", stages_json(stages)}});
-  };
+  auto run = [o, common] { run_clean(*o, *common); };
   return {sub, run, common};
 }
 

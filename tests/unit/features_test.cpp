@@ -101,7 +101,7 @@ TEST(FeatureGraph, CubeGivesTwelvePolylinesAndEightCorners) {
 // The thesis's noise model (7.5): uniform noise of 1% of the diagonal. The
 // clean pipeline flags most points as corners there; the automatic
 // denoising must kick in and recover the twelve edges within 1%.
-TEST(FeatureGraph, NoisyCubeStillGivesItsTwelveEdges) {
+TEST(LargeClouds, NoisyCubeStillGivesItsTwelveEdges) {
   const SurfaceMesh cube = test::cube_mesh(1.0);
   SampleOptions sampling;
   sampling.count = 100000;

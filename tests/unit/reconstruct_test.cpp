@@ -469,7 +469,7 @@ TEST(Reconstruct, PlateThinnerThanTheFacetsStaysClosed) {
 // Normals read from a file are checked: consistent ones are used as given;
 // per-face sign flips (CGAL's cube.pwn) are re-oriented; all-zero ones
 // (CGAL's blobby.xyz) are replaced by estimated normals.
-TEST(Reconstruct, InputNormalsAreCheckedBeforePoissonUsesThem) {
+TEST(LargeClouds, InputNormalsAreCheckedBeforePoissonUsesThem) {
   const SurfaceMesh cube = test::cube_mesh(1.0);
   const PointSet consistent = test::sample_with_normals(cube, 30000, 11);
   ASSERT_TRUE(consistent.has_normals());
