@@ -52,6 +52,7 @@ const OptionField<Options>& find_field(const std::vector<OptionField<Options>>& 
 
 struct FeatureOptions;
 struct ReconstructOptions;
+struct ReconstructTuning;
 struct StereoReconstructionOptions;
 
 /// FeatureOptions (thesis 7.2).
@@ -59,6 +60,9 @@ const std::vector<OptionField<FeatureOptions>>& feature_option_fields();
 /// ReconstructOptions (thesis 7.3, 7.4 and the repairs beyond it), the
 /// feature options included under the group "Feature detection".
 const std::vector<OptionField<ReconstructOptions>>& reconstruct_option_fields();
+/// ReconstructTuning, the repairs' thresholds (part of the table above, under
+/// the group "Tuning of the repairs").
+const std::vector<OptionField<ReconstructTuning>>& tuning_option_fields();
 /// StereoReconstructionOptions (thesis Ch. 6 and the fill beyond it).
 const std::vector<OptionField<StereoReconstructionOptions>>& stereo_option_fields();
 

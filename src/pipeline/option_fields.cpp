@@ -38,12 +38,11 @@ OptionField<O> normals_field() {
   return f;
 }
 
-// The thresholds of the repairs (ReconstructTuning), under one heading.
-void add_tuning_fields(std::vector<OptionField<O>>& f) {
+// The thresholds of the repairs (ReconstructTuning).
+std::vector<OptionField<ReconstructTuning>> tuning_fields() {
   using detail::member_field;
   using T = ReconstructTuning;
-  const char* group = "Tuning of the repairs (beyond the thesis)";
-  const std::vector<OptionField<T>> tuning = {
+  return {
       member_field("min_cvcm_anisotropy", "Automatic normals: a CVCM less anisotropic than this (largest over next eigenvalue) takes a jet normal",
                    "", &T::min_cvcm_anisotropy),
       member_field("min_normal_agreement", "Automatic normals: solve again from jet normals when Poisson agrees with fewer CVCM normals",
@@ -71,7 +70,6 @@ void add_tuning_fields(std::vector<OptionField<O>>& f) {
                    "average spacings", &T::snap_data_distance),
       member_field("snap_support_radius", "Snapping: a move may not take facets away from the points within this radius",
                    "average spacings", &T::snap_support_radius)};
-  for (const OptionField<T>& field : tuning) f.push_back(detail::nested_field(field, &O::tuning, group));
 }
 
 std::vector<OptionField<O>> reconstruct_fields() {
@@ -156,11 +154,17 @@ std::vector<OptionField<O>> reconstruct_fields() {
       member_field("threads", "Worker threads of this reconstruction (0: every core)", "", &O::threads),
   };
   for (const OptionField<FeatureOptions>& feature : feature_option_fields()) f.push_back(nested_field(feature, &O::features));
-  add_tuning_fields(f);
+  for (const OptionField<ReconstructTuning>& field : tuning_option_fields())
+    f.push_back(nested_field(field, &O::tuning, "Tuning of the repairs (beyond the thesis)"));
   return f;
 }
 
 }  // namespace
+
+const std::vector<OptionField<ReconstructTuning>>& tuning_option_fields() {
+  static const std::vector<OptionField<ReconstructTuning>> fields = tuning_fields();
+  return fields;
+}
 
 const std::vector<OptionField<ReconstructOptions>>& reconstruct_option_fields() {
   static const std::vector<OptionField<ReconstructOptions>> fields = reconstruct_fields();

@@ -4,13 +4,15 @@
 #include "sharpmesh/reconstruct.h"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
-#include <utility>
+#include <variant>
 
 #include "core/parallel.h"
 #include "core/recentering.h"
 #include "pipeline/stages.h"
 #include "sharpmesh/errors.h"
+#include "sharpmesh/option_fields.h"
 #include "sharpmesh/eval.h"
 
 namespace sharpmesh {
@@ -50,17 +52,15 @@ const char* to_string(NormalOrigin origin) {
 }
 
 void ReconstructTuning::check() const {
-  const std::pair<const char*, double> lengths[] = {
-      {"sharpen_max_noise", sharpen_max_noise},   {"noise_deviations", noise_deviations},
-      {"off_data_min", off_data_min},             {"retry_reach", retry_reach},
-      {"flatten_radius", flatten_radius},         {"flatten_max_move", flatten_max_move},
-      {"flatten_max_move_spacings", flatten_max_move_spacings}, {"flatten_max_residual", flatten_max_residual},
-      {"snap_max_move", snap_max_move},           {"snap_corner_distance", snap_corner_distance},
-      {"snap_data_distance", snap_data_distance}, {"snap_support_radius", snap_support_radius},
-      {"min_cvcm_anisotropy", min_cvcm_anisotropy}};
-  for (const auto& [name, value] : lengths)
-    if (!(value >= 0) || !std::isfinite(value))
-      throw InvalidArgument(std::string(name) + " must be a non-negative number (got " + format_number(value) + ")");
+  // Every threshold is a non-negative count, ratio or length (its field table
+  // is option_fields.cpp's), so a new one is checked without a line here.
+  for (const OptionField<ReconstructTuning>& field : tuning_option_fields()) {
+    const FieldValue value = field.get(*this);
+    const double* real = std::get_if<double>(&value);
+    const std::int64_t* count = std::get_if<std::int64_t>(&value);
+    if ((real && !(*real >= 0 && std::isfinite(*real))) || (count && *count < 0))
+      throw InvalidArgument(field.name + " must be a non-negative number (got " + format_field_value(value) + ")");
+  }
   if (!(min_normal_agreement >= 0 && min_normal_agreement <= 1))
     throw InvalidArgument("min_normal_agreement is a fraction in [0, 1] (got " + format_number(min_normal_agreement) + ")");
   if (!(input_normal_consensus >= 0.5 && input_normal_consensus <= 1))
