@@ -88,6 +88,10 @@ std::unique_ptr<ImplicitSurface> ImplicitSolver::solve(const PointSet& oriented,
 /// contradicts (at +-h = 0.5 avg) are flipped and Poisson solved again,
 /// while each round lowers their number (at most 3 rounds). A rightly
 /// oriented cloud pays only the check. Returns the number of flips kept.
+std::size_t enough_for_a_repair(std::size_t points, const ReconstructTuning& tuning) {
+  return std::max<std::size_t>(tuning.repair_min_points, points / tuning.repair_one_point_in);  // check() refuses 0
+}
+
 std::size_t ImplicitSolver::repair_signs(PointSet& oriented, std::unique_ptr<ImplicitSurface>& surface,
                                          PoissonDiagnostics& diagnostics) {
   const double h = 0.5 * result_.average_spacing;

@@ -63,6 +63,10 @@ class ImplicitSolver {
   std::optional<std::vector<Vec3>> thin_vertices_;
 };
 
+/// Points a repair (the sign repair, the data-fit retry) needs before it
+/// solves Poisson again (ReconstructTuning::repair_min_points, repair_one_point_in).
+std::size_t enough_for_a_repair(std::size_t points, const ReconstructTuning& tuning);
+
 /// An implicit function with the oriented points it was solved with.
 struct ImplicitStage {
   std::unique_ptr<ImplicitSurface> surface;
@@ -80,10 +84,6 @@ ImplicitStage solve_implicit(const PipelineInput& in, ImplicitSolver& solver, bo
 /// Distance beyond which an input point is off the mesh, or a mesh
 /// component off the data.
 double off_data_distance(const ReconstructResult& r, const ReconstructOptions& options);
-
-/// Points a repair needs before it solves Poisson again
-/// (ReconstructTuning::repair_min_points, repair_one_point_in).
-std::size_t enough_for_a_repair(std::size_t points, const ReconstructTuning& tuning);
 
 /// Restriction, seeds, refinement with protecting balls, flattening and the
 /// open-surface trim of one implicit function into `out.mesh`. Stage names

@@ -56,10 +56,6 @@ double off_data_distance(const ReconstructResult& r, const ReconstructOptions& o
   return std::max(tuning.off_data_min * r.average_spacing, r.criteria.distance) + tuning.noise_deviations * noise;
 }
 
-std::size_t enough_for_a_repair(std::size_t points, const ReconstructTuning& tuning) {
-  return std::max<std::size_t>(tuning.repair_min_points, points / std::max<std::size_t>(tuning.repair_one_point_in, 1));
-}
-
 void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> function, const PointSet& normals,
                   double expected_facets, ReconstructResult& out, const std::string& retry_prefix) {
   const ReconstructOptions& options = in.options;
