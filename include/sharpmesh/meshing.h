@@ -42,6 +42,9 @@ struct FeatureProtection {
   /// Polylines closer than this to a longer one are not protected
   /// (drop_close_polylines); data units, 0: all are.
   double min_separation = 0.0;
+  /// Leave to the implicit surface the polylines that run mostly over parts
+  /// thinner than the balls' diameter (drop_protection_on_thin_parts).
+  bool drop_on_thin_parts = false;
 };
 
 /// A stretch of a protected polyline that the output mesh does not follow
@@ -56,12 +59,23 @@ struct UncoveredGap {
   /// Left out because it runs closer than FeatureProtection::min_separation
   /// to a longer polyline (balls that thin miss the surface).
   bool too_close = false;
+  /// Left out because the part under it is thinner than the diameter of its
+  /// protecting balls (drop_protection_on_thin_parts).
+  bool on_thin_part = false;
 };
 
 /// Removes, shortest first, each polyline whose interior (away from its
 /// ends) lies for more than half within `min_separation` of another kept
 /// polyline; each removed one is reported. Returns the number removed.
 std::size_t drop_close_polylines(std::vector<Polyline>& polylines, double min_separation, std::vector<UncoveredGap>& dropped);
+
+/// Removes every polyline that runs, for more than half of its length,
+/// within `ball_radius` of a thin point (ImplicitMeshingOptions::thin_points)
+/// whose thickness is below the balls' diameter; each one removed is
+/// reported. Returns the number removed.
+std::size_t drop_protection_on_thin_parts(std::vector<Polyline>& polylines, const std::vector<Vec3>& thin_points,
+                                          const std::vector<double>& thin_thickness, double ball_radius,
+                                          std::vector<UncoveredGap>& dropped);
 
 /// The polylines as CGAL's feature protection needs them (its curves may
 /// meet only at their ends): points within `tolerance` of each other become
@@ -98,9 +112,13 @@ struct ImplicitMeshingOptions {
   /// their local thickness (data units, one per point). Within twice its
   /// thickness of such a point the surface Delaunay balls are bounded by
   /// that thickness instead of the uniform facet size, so the restricted
-  /// Delaunay triangulation keeps the two sheets apart.
+  /// Delaunay triangulation keeps the two sheets apart, and the facet
+  /// distance by a quarter of it, but not below `thin_min_distance`.
   std::vector<Vec3> thin_points;
   std::vector<double> thin_thickness;
+  /// Data units; the implicit surface is no more accurate than a fraction of
+  /// the sampling spacing, and a tighter bound only chases its ripples.
+  double thin_min_distance = 0;
   std::uint32_t seed = 0;
   /// Ball-size queries CGAL's feature protection may make (0: no limit).
   /// Past them it is stopped and the surface meshed without protection,

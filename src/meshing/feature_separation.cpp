@@ -12,9 +12,22 @@
 #include <numeric>
 
 #include "core/knn.h"
+#include "meshing/uncovered.h"
 #include "sharpmesh/meshing.h"
 
 namespace sharpmesh {
+
+UncoveredGap detail::whole_polyline_gap(const Polyline& line) {
+  UncoveredGap gap;
+  Vec3 sum{0, 0, 0};
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    sum = sum + line[i];
+    if (i > 0) gap.length += distance(line[i - 1], line[i]);
+  }
+  gap.center = (1.0 / static_cast<double>(std::max<std::size_t>(line.size(), 1))) * sum;
+  gap.gap = -1;
+  return gap;
+}
 
 std::size_t drop_close_polylines(std::vector<Polyline>& polylines, double min_separation, std::vector<UncoveredGap>& dropped) {
   if (!(min_separation > 0) || polylines.size() < 2) return 0;
@@ -66,12 +79,7 @@ std::size_t drop_close_polylines(std::vector<Polyline>& polylines, double min_se
     }
     if (interior == 0 || 2 * close <= interior) continue;
     keep[k] = false;
-    UncoveredGap gap;
-    Vec3 sum{0, 0, 0};
-    for (const Vec3& p : line) sum = sum + p;
-    gap.center = (1.0 / static_cast<double>(line.size())) * sum;
-    gap.length = length[k];
-    gap.gap = -1;
+    UncoveredGap gap = detail::whole_polyline_gap(line);
     gap.too_close = true;
     dropped.push_back(gap);
   }

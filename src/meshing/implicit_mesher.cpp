@@ -96,15 +96,20 @@ struct BallSizing {
   }
 };
 
-/// The facet size criterion (a bound on the surface Delaunay ball radius):
-/// `uniform` everywhere but within twice the thickness of a thin point
-/// (ImplicitMeshingOptions::thin_points), where it is that thickness: an
-/// empty ball centred on one sheet then cannot reach past the other (a
-/// smaller bound only adds facets).
+/// A meshing criterion as a field: `uniform` everywhere but within twice
+/// the thickness of a thin point (ImplicitMeshingOptions::thin_points),
+/// where it is `fraction` of that thickness. As the facet size (a bound on
+/// the surface Delaunay ball radius, fraction 1) an empty ball centred on
+/// one sheet then cannot reach past the other; as the facet distance
+/// (fraction 1/4, not below `floor`) a facet cannot stand half-way across the
+/// part, where the uniform bound (0.6 d') let a bar thinner than d' be meshed
+/// as chords between its faces and come out in pieces. A smaller bound only
+/// adds facets.
 class ThinPartSizing {
  public:
-  ThinPartSizing(double uniform, const std::vector<Vec3>& points, const std::vector<double>& thickness)
-      : uniform_(uniform), thickness_(std::make_shared<std::vector<double>>(thickness)) {
+  ThinPartSizing(double uniform, const std::vector<Vec3>& points, const std::vector<double>& thickness, double fraction = 1.0,
+                 double floor = 0.0)
+      : uniform_(uniform), fraction_(fraction), floor_(floor), thickness_(std::make_shared<std::vector<double>>(thickness)) {
     if (!points.empty()) index_ = std::make_shared<detail::KnnIndex>(points);
   }
   double operator()(const detail::Point3& p, int, const Domain::Index&) const {
@@ -115,11 +120,13 @@ class ThinPartSizing {
     if (nearest.empty()) return uniform_;
     const double t = (*thickness_)[nearest[0]];
     if (squared[0] > 4 * t * t) return uniform_;
-    return std::min(uniform_, t);
+    return std::min(uniform_, std::max(floor_, fraction_ * t));
   }
 
  private:
   double uniform_;
+  double fraction_;
+  double floor_;
   std::shared_ptr<const std::vector<double>> thickness_;
   std::shared_ptr<const detail::KnnIndex> index_;
 };
@@ -620,8 +627,10 @@ ImplicitMeshingResult refine_implicit_surface(const ImplicitSurface& surface, co
 
   // The surface Delaunay ball radius bounds edges: radius <= l/2 gives edges <= l.
   const ThinPartSizing facet_size(options.criteria.edge_length / 2.0, options.thin_points, options.thin_thickness);
+  const ThinPartSizing facet_distance(options.criteria.distance, options.thin_points, options.thin_thickness, 0.25,
+                                      options.thin_min_distance);
   Criteria criteria(params::edge_size = sizing, params::facet_angle = options.criteria.angle, params::facet_size = facet_size,
-                    params::facet_distance = options.criteria.distance);
+                    params::facet_distance = facet_distance);
   // A facet has about half a vertex: a budget of 1.5x the facet limit in
   // vertices stops a run whose estimate was far too low.
   std::size_t max_vertices = options.max_facets > 0 ? options.max_facets * 3 / 4 + 1000 : 0;

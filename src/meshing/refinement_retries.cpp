@@ -1,5 +1,6 @@
 // The retry policy around Mesh_3's refinement (refinement_retries.h).
 #include "meshing/refinement_retries.h"
+#include "meshing/uncovered.h"
 
 #include <algorithm>
 #include <array>
@@ -21,14 +22,7 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 /// The whole of a polyline as an unprotected stretch.
 UncoveredGap refused(const Polyline& line) {
-  UncoveredGap gap;
-  Vec3 sum{0, 0, 0};
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    sum = sum + line[i];
-    if (i > 0) gap.length += distance(line[i - 1], line[i]);
-  }
-  gap.center = (1.0 / static_cast<double>(std::max<std::size_t>(line.size(), 1))) * sum;
-  gap.gap = -1;
+  UncoveredGap gap = whole_polyline_gap(line);
   gap.refused_by_mesher = true;
   return gap;
 }
@@ -91,6 +85,9 @@ ImplicitMeshingResult refine_with_retries(const ImplicitMeshingOptions& options,
   ImplicitMeshingOptions attempt = options;
   std::vector<UncoveredGap> dropped;
   std::size_t runaway_stopped_at = 0;
+  if (options.features.drop_on_thin_parts)
+    drop_protection_on_thin_parts(attempt.features.polylines, options.thin_points, options.thin_thickness,
+                                  options.features.ball_radius, dropped);
   drop_close_polylines(attempt.features.polylines, options.features.min_separation, dropped);
   const double reach = 2 * (options.features.max_ball_radius > 0 ? options.features.max_ball_radius : 3 * options.features.ball_radius);
   auto drop_all = [&] {

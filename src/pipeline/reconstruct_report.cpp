@@ -19,7 +19,7 @@ nlohmann::json protection_report(const ReconstructResult& r, const ReconstructOp
   nlohmann::json gaps = nlohmann::json::array();
   for (const UncoveredGap& g : m.uncovered)
     gaps.push_back({{"center", g.center}, {"length", length_json(g.length, diagonal)}, {"gap", g.gap >= 0 ? length_json(g.gap, diagonal) : nlohmann::json()},
-                    {"refused_by_mesher", g.refused_by_mesher}, {"too_close", g.too_close}});
+                    {"refused_by_mesher", g.refused_by_mesher}, {"too_close", g.too_close}, {"on_thin_part", g.on_thin_part}});
   const std::size_t polylines = o.feature_mode == FeatureMode::Given ? o.given_features.size() : r.features.graph.polylines.size();
   return {{"polylines", polylines},
           {"protecting_balls", m.protecting_balls},

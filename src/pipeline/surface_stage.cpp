@@ -38,6 +38,7 @@ void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult&
       ++result.implicit.thin_points;
     }
     meshing.expected_facets *= 1 + facet_ratio / static_cast<double>(oriented.size());
+    meshing.thin_min_distance = 0.5 * result.average_spacing;
   }
   PointSet grid{oriented.points, {}, {}};
   grid_simplify(grid, spacing);
@@ -86,6 +87,12 @@ void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> func
   // Two polylines (or two stretches of one) closer than two spacings get balls
   // too thin to reach the surface: the shorter is left unprotected.
   meshing.features.min_separation = 2 * out.average_spacing;
+  // When most of the cloud reads as edge points, the offset radius R exceeds
+  // the parts' thickness (7.2.1 assumes R below the reach): a bar thinner
+  // than the convolution radius reads as an edge on all of its faces, and
+  // its polylines trace across it. Those over thin parts are not trusted.
+  const FeatureResult& features = out.features;
+  meshing.features.drop_on_thin_parts = !features.points.empty() && 2 * features.edge_points > features.points.size();
   if (options.data_seed_spacing > 0) {
     StageTimer timer(out.stages, retry_prefix + "seeds");
     add_data_seeds(normals, options.data_seed_spacing * out.d_prime, out, meshing);

@@ -415,6 +415,38 @@ TEST(FeatureSeparation, DropsTheShorterOfTwoCloseCurvesAndSelfCloseTraces) {
   EXPECT_DOUBLE_EQ(folded[0][0][0], 30.0);
 }
 
+// A protecting ball wider than the part holds both of its sheets: an edge
+// running mostly along a part thinner than the balls' diameter is left to
+// the implicit surface; one that only passes by such a part, or runs along
+// a thicker one, keeps its protection.
+TEST(FeatureSeparation, EdgesMostlyOverPartsThinnerThanTheBallsAreDropped) {
+  Polyline edge;
+  for (int i = 0; i <= 30; ++i) edge.push_back({1.0 * i, 0, 0});
+  auto fin = [](double from, double to) {  // points of a fin along x, just beside the edge
+    std::vector<Vec3> points;
+    for (double x = from; x <= to; x += 0.5) points.push_back({x, 0.3, 0});
+    return points;
+  };
+  std::vector<UncoveredGap> dropped;
+  std::vector<Polyline> lines = {edge};
+  const std::vector<Vec3> long_fin = fin(5, 25);
+  EXPECT_EQ(drop_protection_on_thin_parts(lines, long_fin, std::vector<double>(long_fin.size(), 1.5), 1.0, dropped), 1u);
+  EXPECT_TRUE(lines.empty());
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_TRUE(dropped[0].on_thin_part);
+  EXPECT_NEAR(dropped[0].length, 30.0, 1e-9);
+
+  dropped.clear();
+  lines = {edge};
+  const std::vector<Vec3> short_fin = fin(10, 20);
+  EXPECT_EQ(drop_protection_on_thin_parts(lines, short_fin, std::vector<double>(short_fin.size(), 1.5), 1.0, dropped), 0u);
+  lines = {edge};
+  EXPECT_EQ(drop_protection_on_thin_parts(lines, long_fin, std::vector<double>(long_fin.size(), 2.5), 1.0, dropped), 0u);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].size(), edge.size());
+  EXPECT_TRUE(dropped.empty());
+}
+
 // CGAL's Poisson adds a fixed weight to its Laplacian, whose entries scale
 // with the unit: the same cube in metres and in millimetres (x 1024, exact in
 // floating point) used to give different functions. Scaled to a fixed
