@@ -116,8 +116,9 @@ struct ImplicitMeshingOptions {
   /// distance by a quarter of it, but not below `thin_min_distance`.
   std::vector<Vec3> thin_points;
   std::vector<double> thin_thickness;
-  /// Data units; the implicit surface is no more accurate than a fraction of
-  /// the sampling spacing, and a tighter bound only chases its ripples.
+  /// Data units; the implicit surface is no more accurate than the sampling
+  /// spacing, and a tighter bound only chases its ripples (and, past an open
+  /// boundary, the closing sheet the trim then has to cut).
   double thin_min_distance = 0;
   std::uint32_t seed = 0;
   /// Ball-size queries CGAL's feature protection may make (0: no limit).

@@ -38,7 +38,7 @@ void add_data_seeds(const PointSet& oriented, double spacing, ReconstructResult&
       ++result.implicit.thin_points;
     }
     meshing.expected_facets *= 1 + facet_ratio / static_cast<double>(oriented.size());
-    meshing.thin_min_distance = 0.5 * result.average_spacing;
+    meshing.thin_min_distance = result.average_spacing;
   }
   PointSet grid{oriented.points, {}, {}};
   grid_simplify(grid, spacing);
