@@ -101,10 +101,10 @@ struct BallSizing {
 /// where it is `fraction` of that thickness. As the facet size (a bound on
 /// the surface Delaunay ball radius, fraction 1) an empty ball centred on
 /// one sheet then cannot reach past the other; as the facet distance
-/// (fraction 1/4, not below `floor`, a spacing) a facet cannot stand half-way across the
-/// part, where the uniform bound (0.6 d') let a bar thinner than d' be meshed
-/// as chords between its faces and come out in pieces. A smaller bound only
-/// adds facets.
+/// (fraction 1/4, not below `floor`, a spacing) a facet cannot stand
+/// half-way across the part, where the uniform bound (0.6 d') let a bar
+/// thinner than d' be meshed as chords between its faces and come out in
+/// pieces. A smaller bound only adds facets.
 class ThinPartSizing {
  public:
   ThinPartSizing(double uniform, const std::vector<Vec3>& points, const std::vector<double>& thickness, double fraction = 1.0,

@@ -29,7 +29,7 @@ std::size_t drop_protection_on_thin_parts(std::vector<Polyline>& polylines, cons
   const detail::KnnIndex index(thinner);
   std::vector<std::uint32_t> nearest;
   std::vector<double> squared;
-  std::size_t cut = 0;
+  std::size_t removed = 0;
   std::vector<Polyline> kept;
   for (Polyline& line : polylines) {
     std::vector<bool> thin(line.size());
@@ -54,10 +54,10 @@ std::size_t drop_protection_on_thin_parts(std::vector<Polyline>& polylines, cons
     UncoveredGap gap = detail::whole_polyline_gap(line);
     gap.on_thin_part = true;
     dropped.push_back(gap);
-    ++cut;
+    ++removed;
   }
   polylines = std::move(kept);
-  return cut;
+  return removed;
 }
 
 }  // namespace sharpmesh
