@@ -49,6 +49,7 @@ bench: data
 	@bench/run $(BUILD_DIR)
 	@bench/corpus $(BUILD_DIR)
 	@bench/accuracy_vs_size $(BUILD_DIR)
+	@bench/compactness $(BUILD_DIR)
 	@bench/fig714 $(BUILD_DIR)
 	@bench/sampling_seeds $(BUILD_DIR)
 	@bench/scans $(BUILD_DIR)

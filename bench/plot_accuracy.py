@@ -23,7 +23,7 @@ lines = ["# Accuracy versus size (thesis Fig. 7.13, 7.14)", "",
          "Produced by `bench/accuracy_vs_size`. Distances in U = 1/200 of the reference's bounding-box diagonal; "
          "`ours` = the Chapter 7 pipeline (features, CVCM normals, Poisson, protected refinement), "
          "`fast` = ours with `--poisson-spacing 0.5` (Poisson on a grid simplification, cells d'/2), `pif` = `--no-features`, `open3d` = Open3D 0.16 screened Poisson (depth = parameter) + marching cubes, "
-         "normals by PCA (k = 18) oriented by the tangent-aware MST (`sharpmesh clean --normals pca --orient --no-winding-repair`; Open3D's own tangent-plane orientation did not finish in 20 minutes on 200k points), cropped to the cloud's bounding box.", ""]
+         "normals by PCA (k = 18) oriented by the tangent-aware MST (`sharpmesh clean --normals pca --orient --no-winding-repair`; Open3D's own tangent-plane orientation did not finish in 20 minutes on 200k points), cropped to the cloud's bounding box grown by 5% of its longest side.", ""]
 fig, axes = plt.subplots(2, len(models), figsize=(5 * len(models), 8), squeeze=False)
 for col, model in enumerate(models):
     lines += [f"## {model}", "", "| method | delta/depth | facets | Hausdorff (U) | mean (U) | sharp-edge mean (U) | sharp-edge max (U) | closed | manifold | self-int. | feature segments as edges | seconds |",

@@ -17,6 +17,13 @@ void add_classes_option(CLI::App& app, std::vector<int>& classes) {
       ->delimiter(',')->check(CLI::Range(0, 255));
 }
 
+void add_mesh_output_flags(CLI::App& app, bool& allow_invalid, bool& ascii) {
+  app.add_flag("--allow-invalid", allow_invalid,
+               "Write the mesh even if facets still cross others after the repair (by default nothing is written and "
+               "the exit status is 1)");
+  app.add_flag("--ascii", ascii, "Write ASCII PLY instead of binary");
+}
+
 PointSet read_cloud(const std::string& path, const std::vector<int>& classes) {
   if (classes.empty()) return read_point_set(path);
   if (!is_las_path(path)) throw InvalidArgument("--classes needs a .las or .laz input (" + path + " has no classes)");

@@ -35,6 +35,9 @@ struct Command {
 /// `--classes 2,6`: the LAS classes of a LAS/LAZ input to keep (ground and
 /// buildings, say); real LiDAR needs vegetation and noise left out.
 void add_classes_option(CLI::App& app, std::vector<int>& classes);
+/// `--allow-invalid` and `--ascii` of the commands that write a mesh checked
+/// for crossing facets.
+void add_mesh_output_flags(CLI::App& app, bool& allow_invalid, bool& ascii);
 /// Reads the input cloud, keeping `classes` only when given (LAS/LAZ only).
 PointSet read_cloud(const std::string& path, const std::vector<int>& classes);
 
@@ -50,6 +53,7 @@ Command add_eval_stereo(CLI::App& app);
 Command add_stereo(CLI::App& app);
 Command add_view(CLI::App& app);
 Command add_render(CLI::App& app);
+Command add_decimate(CLI::App& app);
 
 
 /// Progress on stderr: a live percentage on a terminal, one line per stage otherwise.

@@ -35,10 +35,7 @@ Command add_reconstruct(CLI::App& app) {
                   "Seconds the whole reconstruction may take; past them it stops with exit status 1 and writes nothing (0: no limit)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  sub->add_flag("--allow-invalid", o->allow_invalid,
-                "Write the mesh even if facets still cross others after the repair (by default nothing is written and "
-                "the exit status is 1)");
-  sub->add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
+  add_mesh_output_flags(*sub, o->allow_invalid, o->ascii);
   common->add_to(*sub);
   auto run = [o, common] {
     check_output(o->output, "mesh");

@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "sharpmesh " SHARPMESH_VERSION);
   std::vector<cli::Command> commands = {cli::add_info(app), cli::add_clean(app), cli::add_sample(app), cli::add_eval(app),
                                         cli::add_reconstruct(app), cli::add_features(app), cli::add_eval_features(app), cli::add_make_scene(app),
-                                        cli::add_stereo(app), cli::add_eval_stereo(app), cli::add_view(app), cli::add_render(app)};
+                                        cli::add_stereo(app), cli::add_eval_stereo(app), cli::add_view(app), cli::add_render(app),
+                                        cli::add_decimate(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

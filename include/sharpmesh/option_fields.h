@@ -50,6 +50,7 @@ const OptionField<Options>& find_field(const std::vector<OptionField<Options>>& 
   throw InvalidArgument("unknown option '" + name + "' (options: " + names + ")");
 }
 
+struct DecimationOptions;
 struct FeatureOptions;
 struct ReconstructOptions;
 struct ReconstructTuning;
@@ -63,6 +64,9 @@ const std::vector<OptionField<ReconstructOptions>>& reconstruct_option_fields();
 /// ReconstructTuning, the repairs' thresholds (part of the table above, under
 /// the group "Tuning of the repairs").
 const std::vector<OptionField<ReconstructTuning>>& tuning_option_fields();
+/// DecimationOptions (sharpmesh/compact.h; part of the reconstruct table
+/// under the group "Compaction").
+const std::vector<OptionField<DecimationOptions>>& decimation_option_fields();
 /// StereoReconstructionOptions (thesis Ch. 6 and the fill beyond it).
 const std::vector<OptionField<StereoReconstructionOptions>>& stereo_option_fields();
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sharpmesh/compact.h"
 #include "sharpmesh/features.h"
 #include "sharpmesh/implicit.h"
 #include "sharpmesh/meshing.h"
@@ -174,6 +175,10 @@ struct ReconstructOptions {
   /// the thesis; with repair_normal_signs).
   bool refit_off_data = true;
   std::size_t max_facets = 5'000'000;
+  /// Beyond the thesis, whose refinement gives every region the same size
+  /// d' (its 7.5): with a facet budget or a tolerance, the refined mesh's
+  /// edges are collapsed, sharp edges kept (sharpmesh/compact.h).
+  DecimationOptions compaction;
   /// Ball-size queries the feature protection may make per point of the
   /// protected polylines before the surface is meshed without it
   /// (ImplicitMeshingOptions::protection_query_limit; 0: no limit). Healthy
@@ -279,6 +284,7 @@ struct ReconstructResult {
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps
   RepairStats repairs;
   DataFitStats data_fit;
+  DecimationResult decimation;       ///< with a facet budget or a tolerance (input_facets 0: not run)
   std::vector<Warning> warnings;
   std::vector<StageTiming> stages;
 };

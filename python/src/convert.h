@@ -69,6 +69,7 @@ void bind_reconstruct(py::module_& m);
 void bind_eval(py::module_& m);
 void bind_view(py::module_& m);
 void bind_stereo(py::module_& m);
+void bind_compact(py::module_& m);
 
 }  // namespace sharpmesh::python
 

@@ -1,5 +1,6 @@
 // The Python module sharpmesh._core: the library's exceptions and one binding
-// file per pipeline stage (io, pointset, features, reconstruct, eval, view).
+// file per pipeline stage (io, pointset, features, reconstruct, eval, view,
+// stereo, compact).
 #include "convert.h"
 #include "sharpmesh/errors.h"
 #include "sharpmesh/version.h"
@@ -37,4 +38,5 @@ PYBIND11_MODULE(_core, m) {
   python::bind_eval(m);
   python::bind_view(m);
   python::bind_stereo(m);
+  python::bind_compact(m);
 }

@@ -88,6 +88,24 @@ def without_timings(report):
     return report
 
 
+def test_a_facet_budget_keeps_the_cube_and_its_edges(cube, cube_cloud):
+    fine = sm.reconstruct(cube_cloud.points, delta=3.5)
+    light = sm.reconstruct(cube_cloud.points, delta=3.5, facets=300)
+    assert len(light.mesh.faces) <= 300 < len(fine.mesh.faces)
+    assert light.report["decimation"]["output_facets"] == len(light.mesh.faces)
+    e, f = sm.evaluate(light.mesh, cube), sm.evaluate(fine.mesh, cube)
+    t = e["topology"]
+    assert t["closed"] and t["manifold"] and not t["self_intersecting"]
+    assert e["sharp_max"] < 2 * f["sharp_max"] and e["hausdorff"] < 2 * f["hausdorff"]
+    # The same collapse on its own, from the mesh and its feature edges.
+    mesh, report = sm.decimate(fine.mesh, curves=fine.sharp_edges, facets=300)
+    assert len(mesh.faces) == report["output_facets"] <= 300 and not report["budget_missed"]
+    options = sm.DecimationOptions(facets=300, sharp_angle=0)
+    assert sm.decimate(fine.mesh, options=options)[1]["sharp_edges"] == 0  # no curves given, none detected
+    with pytest.raises(sm.InvalidArgument, match="budget or a tolerance"):
+        sm.decimate(fine.mesh)
+
+
 def test_every_option_is_a_flag_and_a_keyword(cli):
     help_text = subprocess.run([cli, "reconstruct", "--help"], check=True, capture_output=True, text=True).stdout
     flags = set(re.findall(r"^\s+(?:-[a-z],)?(--[a-z0-9-]+)", help_text, re.M))

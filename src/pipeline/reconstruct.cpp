@@ -81,6 +81,7 @@ void ReconstructOptions::check(std::size_t n) const {
   if (feature_mode == FeatureMode::Extract) features.check();
   if (normal_source == NormalSource::Cvcm && feature_mode != FeatureMode::Extract)
     throw InvalidArgument("normals 'cvcm' need feature extraction (the CVCM is computed there, 7.4)");
+  compaction.check();
   if (!(trim_distance >= 0) || !std::isfinite(trim_distance))
     throw InvalidArgument("trim distance must be >= 0 (got " + format_number(trim_distance) + ")");
   if (!(poisson_spacing >= 0 && poisson_spacing <= 4))
@@ -241,6 +242,7 @@ ReconstructResult reconstruct_centred(PointSet given, const ReconstructOptions& 
   mesh_surface(in, std::move(implicit.surface), implicit.oriented, estimate, result, "");
   FitStage fit = fit_and_retry(in, solver, implicit.oriented, estimate, result);
   snap_to_data(in, fit, result);
+  compact(in, fit, result);
   result.data_fit.off_data_points = fit.fit.off.size();
   result.data_fit.off_data_against = fit.fit.off_and_against.size();
   result.data_fit.invented_vertices = fit.fit.invented_vertices;

@@ -132,6 +132,13 @@ nlohmann::json reconstruct_report(const ReconstructResult& r, const ReconstructO
        {{"steps", r.meshing.refinement_steps}, {"stalled", r.meshing.refinement_stalled}, {"runaway", r.meshing.refinement_runaway}}},
       {"warnings", warnings},
       {"stages", stages_json(r.stages)}};
+  if (r.decimation.input_facets > 0)
+    report["decimation"] = {{"input_facets", r.decimation.input_facets},
+                            {"output_facets", r.decimation.output_facets},
+                            {"collapsed_edges", r.decimation.collapsed_edges},
+                            {"sharp_edges", r.decimation.feature_edges},
+                            {"corner_vertices", r.decimation.corner_vertices},
+                            {"budget_missed", r.decimation.budget_missed}};
   if (o.feature_mode != FeatureMode::None) report["protection"] = protection_report(r, o);
   if (o.feature_mode == FeatureMode::Extract) report["features"] = feature_report(r.features, o.features, diagonal);
   return report;

@@ -36,6 +36,11 @@ std::vector<Warning> reconstruct_warnings(const ReconstructResult& r, const Reco
     out.push_back({"refinement_stalled", "refinement stopped adding vertices and was ended early; check the mesh's topology"});
   if (r.repairs.intersection_repair.remaining_pairs > 0)
     out.push_back({"self_intersecting", printed("%.0f pairs of facets still cross after the repair", double(r.repairs.intersection_repair.remaining_pairs))});
+  if (r.decimation.budget_missed)
+    out.push_back({"facet_budget_missed",
+                   printed("the mesh kept %.0f facets, above the budget of %.0f: every further collapse would move a corner, leave a "
+                           "sharp edge, fold a facet or break the tolerance",
+                           double(r.decimation.output_facets), double(options.compaction.facets))});
   if (r.normals.normal_origin == NormalOrigin::InputReoriented)
     out.push_back({"input_normals_reoriented",
                    printed("the input's normal signs are inconsistent (%.0f%% agree with a consistent orientation); re-oriented by MST",

@@ -2,8 +2,9 @@
 // composes: input normals check -> normals (7.4 and the orientation
 // repairs) -> implicit function (Poisson, its sign repair) -> surface
 // meshing (7.3.2 with the open-surface trim) -> data fit (retries against
-// the input) -> snapping. Each stage writes its counts into the
-// ReconstructResult it is given.
+// the input) -> snapping -> compaction (with a facet budget or a
+// tolerance). Each stage writes its counts into the ReconstructResult it is
+// given.
 #pragma once
 
 #include <cstdint>
@@ -110,6 +111,12 @@ FitStage fit_and_retry(const PipelineInput& in, ImplicitSolver& solver, const Po
 /// Vertices onto the corners and data points the mesh misses, then the fit
 /// measured again.
 void snap_to_data(const PipelineInput& in, FitStage& stage, ReconstructResult& result);
+
+// ---- compact_stage.cpp -------------------------------------------------
+
+/// With a facet budget or a tolerance: the mesh's edges collapsed with its
+/// sharp edges kept (sharpmesh/compact.h), then the fit measured again.
+void compact(const PipelineInput& in, FitStage& stage, ReconstructResult& result);
 
 /// The warnings of a finished reconstruction (ReconstructResult::warnings).
 std::vector<Warning> reconstruct_warnings(const ReconstructResult& result, const ReconstructOptions& options);

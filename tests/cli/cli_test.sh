@@ -32,7 +32,7 @@ PY
 
 case "$case_name" in
   help)
-    for cmd in "" info clean sample eval reconstruct features eval-features make-scene eval-stereo; do
+    for cmd in "" info clean sample eval reconstruct features eval-features make-scene eval-stereo decimate; do
       $bin $cmd --help >out.txt || fail "--help of '$cmd' failed"
       grep -q "Usage" out.txt || fail "--help of '$cmd' shows no usage"
     done ;;
@@ -107,6 +107,35 @@ assert r["counts"]["normal_source"] == "cvcm", r["counts"]
 assert r["counts"]["flattened_vertices"] > 0, r["counts"]
 PY
     ;;
+  decimate)  # issue 37: a budget reached with the sharp edges kept, closed and valid, and the same from reconstruct
+    $bin sample "$data/meshes/fandisk.off" -n 30000 --seed 1 -o s.ply -q || fail "sample failed"
+    $bin reconstruct s.ply -o fine.ply --sharp-edges e.txt --report fine.json -q || fail "reconstruct failed"
+    $bin decimate fine.ply -o light.ply --feature-curves e.txt --facets 1500 --report d.json -q || fail "decimate failed"
+    $bin reconstruct s.ply -o direct.ply --facets 1500 --report r.json -q || fail "reconstruct --facets failed"
+    for m in fine light direct; do $bin eval $m.ply --reference "$data/meshes/fandisk.off" --json $m.eval.json -q || fail "eval $m failed"; done
+    python3 - <<'PY' || fail "decimation out of bounds"
+import json
+d = json.load(open("d.json"))
+assert d["counts"]["output_facets"] == 1500 and not d["counts"]["budget_missed"], d["counts"]
+assert d["counts"]["sharp_edges"] > 0 and d["self_intersections"]["remaining_pairs"] == 0, d
+r = json.load(open("r.json"))
+assert r["decimation"]["output_facets"] <= 1500 and r["counts"]["facets"] <= 1500, r["decimation"]
+fine, light, direct = (json.load(open(f"{m}.eval.json"))["evaluation"] for m in ("fine", "light", "direct"))
+for e in (light, direct):
+    t = e["topology"]
+    assert t["closed"] and t["manifold"] and not t["self_intersecting"] and t["components"] == 1, t
+    # A tenth of the facets: the sharp edges stay about where they were, the
+    # surface within a few of the fine mesh's errors.
+    assert e["sharp_edges"]["mean"]["value"] < 2.5 * fine["sharp_edges"]["mean"]["value"], (e["sharp_edges"], fine["sharp_edges"])
+    assert e["hausdorff"]["value"] < 2 * fine["hausdorff"]["value"], (e["hausdorff"], fine["hausdorff"])
+PY
+    ;;
+  decimate-bad)
+    printf 'OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 1 2\n' > nm.off
+    expect_error 1 "nm.off: decimation needs an oriented, edge- and vertex-manifold mesh" "out.ply" $bin decimate nm.off -o out.ply --facets 2
+    expect_error 2 "needs --facets or --tolerance" "out.ply" $bin decimate nm.off -o out.ply
+    expect_error 2 "tolerance" "out.ply" $bin decimate nm.off -o out.ply --tolerance 3
+    expect_error 1 "nope.off" "out.ply" $bin decimate nope.off -o out.ply --facets 10 ;;
   features-given)
     $bin sample "$data/meshes/cube.off" -n 5000 --seed 2 -o s.ply -q || fail "sample failed"
     printf '2 -1 -1 -1 1 -1 -1\n' > one.txt
