@@ -47,6 +47,11 @@ struct DecimationResult {
   /// The budget was not reached: every remaining collapse would move a
   /// corner, leave a curve, break the tolerance or fold a facet.
   bool budget_missed = false;
+  /// Collapses run: a second and third one when facets crossed, with the
+  /// vertices around the crossings frozen (kept where they are).
+  int rounds = 0;
+  std::size_t frozen_vertices = 0;
+  std::size_t crossing_pairs = 0;  ///< facet pairs still crossing after the last round
 };
 
 /// Collapses edges of `mesh` until it has at most options.facets facets or
@@ -56,7 +61,9 @@ struct DecimationResult {
 /// ImplicitMeshingResult::feature_edges); their edges, the mesh's border
 /// and the edges sharper than options.sharp_angle are the curves that
 /// stay. The mesh keeps its topology (CGAL's link condition) and, with
-/// bounded_normal_change, folds no facet over.
+/// bounded_normal_change, folds no facet over; where the collapse brought
+/// facets across others (the two sides of a thin part), it is run again
+/// with the vertices around the crossings frozen.
 DecimationResult decimate(SurfaceMesh& mesh, const std::vector<Polyline>& feature_curves, const DecimationOptions& options,
                           const Progress& progress = {});
 

@@ -177,7 +177,8 @@ struct ReconstructOptions {
   std::size_t max_facets = 5'000'000;
   /// Beyond the thesis, whose refinement gives every region the same size
   /// d' (its 7.5): with a facet budget or a tolerance, the refined mesh's
-  /// edges are collapsed, sharp edges kept (sharpmesh/compact.h).
+  /// edges are collapsed, sharp edges kept (sharpmesh/compact.h). A budget
+  /// above the facet count delta gives refines finer first (d' >= avg).
   DecimationOptions compaction;
   /// Ball-size queries the feature protection may make per point of the
   /// protected polylines before the surface is meshed without it

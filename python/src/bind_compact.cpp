@@ -24,6 +24,9 @@ void bind_compact(py::module_& m) {
           report["sharp_edges"] = r.feature_edges;
           report["corner_vertices"] = r.corner_vertices;
           report["budget_missed"] = r.budget_missed;
+          report["rounds"] = r.rounds;
+          report["frozen_vertices"] = r.frozen_vertices;
+          report["crossing_pairs"] = r.crossing_pairs;
           return py::make_tuple(make_mesh(surface), report);
         },
         py::arg("mesh"), py::kw_only(), py::arg("curves") = py::none(), py::arg("options") = py::none(),

@@ -10,6 +10,7 @@
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
@@ -17,10 +18,13 @@
 #include <CGAL/Surface_mesh_simplification/Edge_collapse_visitor_base.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <numeric>
 
+#include "compact/facet_grid.h"
 #include "core/cgal_bridge.h"
 #include "sharpmesh/errors.h"
 
@@ -168,6 +172,15 @@ struct CollapseState {
   // The edge being collapsed, recorded before CGAL removes it.
   bool on_curve = false, corner = false, left = false, right = false;
   std::size_t removed_facets = 0;
+  /// Per input vertex, the vertex it was collapsed into (itself while it
+  /// stands): a union-find whose roots are the output's vertices.
+  std::vector<std::uint32_t> merged_into;
+  /// The facets by place, kept up to date through the collapses.
+  detail::FacetGrid* grid = nullptr;
+  std::uint32_t root(std::uint32_t v) {
+    while (merged_into[v] != v) v = merged_into[v] = merged_into[merged_into[v]];
+    return v;
+  }
 };
 
 /// Keeps the curve flags on the vertex and the edges that survive a
@@ -186,19 +199,30 @@ class CurveKeeper : public SMS::Edge_collapse_visitor_base<Mesh> {
     state_->left = profile.left_face_exists() && (c.edge[mesh.edge(profile.vL_v0())] || c.edge[mesh.edge(profile.v1_vL())]);
     state_->right = profile.right_face_exists() && (c.edge[mesh.edge(profile.v0_vR())] || c.edge[mesh.edge(profile.vR_v1())]);
     state_->removed_facets = static_cast<std::size_t>(profile.left_face_exists()) + profile.right_face_exists();
+    // The facets around the edge change or go: out of the grid while their
+    // corners are where the grid put them.
+    for (VertexIndex v : {profile.v0(), profile.v1()})
+      for (Mesh::Face_index f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+        if (f != Mesh::null_face()) state_->grid->erase(f);
   }
 
   void OnCollapsed(const Profile& profile, VertexIndex kept) const {
     const Mesh& mesh = profile.surface_mesh();
+    const VertexIndex removed = kept == profile.v0() ? profile.v1() : profile.v0();
+    state_->merged_into[removed.idx()] = static_cast<std::uint32_t>(kept.idx());
     Curves& c = state_->curves;
     c.on_curve[kept] = state_->on_curve;
     c.corner[kept] = state_->corner;
     if (profile.left_face_exists() && state_->left) mark(mesh, kept, profile.vL());
     if (profile.right_face_exists() && state_->right) mark(mesh, kept, profile.vR());
+    for (Mesh::Face_index f : CGAL::faces_around_target(mesh.halfedge(kept), mesh))
+      if (f != Mesh::null_face()) state_->grid->insert(f);
     state_->facets -= state_->removed_facets;
     ++state_->collapsed;
-    if (*progress_ && state_->collapsed % 2048 == 0 && start_ > target_ && target_ > 0)
-      (*progress_)("decimation", static_cast<double>(start_ - state_->facets) / static_cast<double>(start_ - target_));
+    // Towards the budget; with a tolerance alone, the share of facets gone
+    // (its end is unknown until no collapse passes).
+    if (state_->collapsed % 512 == 0 && start_ > target_)
+      report_progress(*progress_, "decimation", static_cast<double>(start_ - state_->facets) / static_cast<double>(start_ - target_));
   }
 
  private:
@@ -219,23 +243,79 @@ struct FacetBudget {
   bool operator()(const double&, const Profile&, std::size_t, std::size_t) const { return target > 0 && facets <= target; }
 };
 
-/// The optional filters: CGAL's bounded normal change, then the polyhedral
-/// envelope of the input mesh.
+/// The filters: CGAL's bounded normal change; no new facet across another
+/// (facet_grid.h); CGAL's polyhedral envelope of the input mesh.
 class CollapseFilter {
  public:
-  CollapseFilter(bool bounded_normal_change, double tolerance) : normal_change_(bounded_normal_change) {
+  CollapseFilter(bool bounded_normal_change, double tolerance, detail::FacetGrid& grid)
+      : normal_change_(bounded_normal_change), grid_(&grid) {
     if (tolerance > 0) envelope_ = std::make_shared<SMS::Polyhedral_envelope_filter<Kernel>>(tolerance);
   }
   boost::optional<Point3> operator()(const Profile& profile, boost::optional<Point3> placement) const {
     if (placement && normal_change_) placement = SMS::Bounded_normal_change_filter<>()(profile, placement);
+    if (placement && crosses(profile, *placement)) placement = boost::none;
     if (placement && envelope_) placement = (*envelope_)(profile, placement);
     return placement;
   }
 
  private:
+  /// Whether a facet of the star, its moving corner at `placement`, meets a
+  /// facet outside the star. Profile::triangles() lists the edge's own
+  /// facets first, then the star's with the moving corner second.
+  bool crosses(const Profile& profile, const Point3& placement) const {
+    const Mesh& mesh = profile.surface_mesh();
+    const auto& triangles = profile.triangles();
+    std::size_t skip = static_cast<std::size_t>(profile.left_face_exists()) + profile.right_face_exists();
+    for (auto t = triangles.begin() + static_cast<std::ptrdiff_t>(std::min(skip, triangles.size())); t != triangles.end(); ++t)
+      if (grid_->crosses(Kernel::Triangle_3(mesh.point(t->v0), placement, mesh.point(t->v2)), {profile.v0(), profile.v1(), t->v0, t->v2}))
+        return true;
+    return false;
+  }
+
   bool normal_change_;
+  detail::FacetGrid* grid_;
   std::shared_ptr<SMS::Polyhedral_envelope_filter<Kernel>> envelope_;
 };
+
+/// Mean edge length of the mesh: the grid's cell is twice it.
+double mean_edge(const Mesh& mesh) {
+  double sum = 0;
+  for (EdgeIndex e : mesh.edges()) sum += std::sqrt(CGAL::squared_distance(mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1))));
+  return mesh.number_of_edges() > 0 ? sum / static_cast<double>(mesh.number_of_edges()) : 1.0;
+}
+
+/// Marks the `frozen` input vertices as corners: they keep their place, and
+/// their edges collapse only into them. The CGAL mesh's vertex i is input
+/// vertex i (polygon_soup_to_polygon_mesh adds the points in order).
+void freeze(const std::vector<bool>& frozen, Curves& curves) {
+  for (std::size_t i = 0; i < frozen.size(); ++i)
+    if (frozen[i]) curves.on_curve[VertexIndex(static_cast<std::uint32_t>(i))] = curves.corner[VertexIndex(static_cast<std::uint32_t>(i))] = true;
+}
+
+/// Freezes the input vertices that were collapsed into a vertex of a
+/// crossing facet: where the collapse made the crossing, the next round keeps
+/// the input's facets.
+std::size_t freeze_crossings(const Mesh& mesh, const std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>>& pairs,
+                             CollapseState& state, std::vector<bool>& frozen) {
+  std::vector<bool> crossing_vertex(frozen.size(), false);
+  for (const auto& pair : pairs)
+    for (Mesh::Face_index f : {pair.first, pair.second})
+      for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
+        // With their neighbours: the crossing's whole neighbourhood stays fine.
+        crossing_vertex[v.idx()] = true;
+        for (VertexIndex w : CGAL::vertices_around_target(mesh.halfedge(v), mesh)) crossing_vertex[w.idx()] = true;
+      }
+  std::size_t added = 0;
+  for (std::uint32_t i = 0; i < frozen.size(); ++i)
+    if (!frozen[i] && crossing_vertex[state.root(i)]) frozen[i] = true, ++added;
+  return added;
+}
+
+/// Collapses that still bring facets across others (folds around a shared
+/// corner, which the grid leaves to the normal-change filter) are undone by
+/// collapsing again with the vertices around the crossings frozen, up to
+/// this many times.
+constexpr int kFreezeRounds = 8;
 
 }  // namespace
 
@@ -246,22 +326,42 @@ DecimationResult decimate(SurfaceMesh& surface, const std::vector<Polyline>& fea
   DecimationResult result;
   result.input_facets = result.output_facets = surface.faces.size();
   if (options.facets > 0 && surface.faces.size() <= options.facets) return result;
-  Mesh mesh = to_surface_mesh(surface);
-  CollapseState state{mark_curves(mesh, feature_curves, options.sharp_angle, result)};
-  state.facets = mesh.number_of_faces();
-  Quadrics quadrics(mesh);
-  SMS::edge_collapse(mesh, FacetBudget{state.facets, options.facets},
-                     CGAL::parameters::get_cost(quadrics)
-                         .get_placement(CurvePlacement(quadrics, state.curves))
-                         .filter(CollapseFilter(options.bounded_normal_change,
-                                                options.tolerance * bounding_box(surface.vertices).diagonal()))
-                         .visitor(CurveKeeper(state, progress, options.facets)));
-  result.collapsed_edges = state.collapsed;
-  result.output_facets = state.facets;
-  result.budget_missed = options.facets > 0 && state.facets > options.facets;
-  surface = from_surface_mesh(mesh);
-  if (progress) progress("decimation", 1.0);
-  return result;
+  const double tolerance = options.tolerance * bounding_box(surface.vertices).diagonal();
+  std::vector<bool> frozen(surface.vertices.size(), false);
+  for (int round = 0;; ++round) {
+    DecimationResult attempt = result;
+    Mesh mesh = to_surface_mesh(surface);
+    CollapseState state;
+    state.curves = mark_curves(mesh, feature_curves, options.sharp_angle, attempt);
+    freeze(frozen, state.curves);
+    attempt.frozen_vertices = static_cast<std::size_t>(std::count(frozen.begin(), frozen.end(), true));
+    state.merged_into.resize(mesh.number_of_vertices());
+    std::iota(state.merged_into.begin(), state.merged_into.end(), 0u);
+    state.facets = mesh.number_of_faces();
+    detail::FacetGrid grid(mesh, 2 * mean_edge(mesh));
+    state.grid = &grid;
+    Quadrics quadrics(mesh);
+    // Progress follows the first collapse; a second one is a repair of it.
+    const Progress silent;
+    SMS::edge_collapse(mesh, FacetBudget{state.facets, options.facets},
+                       CGAL::parameters::get_cost(quadrics)
+                           .get_placement(CurvePlacement(quadrics, state.curves))
+                           .filter(CollapseFilter(options.bounded_normal_change, tolerance, grid))
+                           .visitor(CurveKeeper(state, round == 0 ? progress : silent, options.facets)));
+    attempt.collapsed_edges = state.collapsed;
+    attempt.output_facets = state.facets;
+    attempt.budget_missed = options.facets > 0 && state.facets > options.facets;
+    attempt.rounds = round + 1;
+    std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossing;
+    CGAL::Polygon_mesh_processing::self_intersections(mesh, std::back_inserter(crossing));
+    attempt.crossing_pairs = crossing.size();
+    if (crossing.empty() || round + 1 == kFreezeRounds || freeze_crossings(mesh, crossing, state, frozen) == 0) {
+      // Cancelled up to here, the caller's mesh is as it was.
+      report_progress(progress, "decimation", 1.0);
+      surface = from_surface_mesh(mesh);
+      return attempt;
+    }
+  }
 }
 
 }  // namespace sharpmesh

@@ -206,10 +206,20 @@ PointSet prepare(PointSet input, const ReconstructOptions& options, const Progre
   if (!(result.average_spacing > 0)) throw InvalidInput("reconstruction: the average spacing is zero (duplicated points?)");
   result.d_prime = options.delta * result.average_spacing;
   result.criteria = RefinementCriteria::from_spacing(result.d_prime);
-  const double estimate = estimate_facet_count(estimated_area_from_spacing(input.size(), result.average_spacing), result.criteria);
+  const double area = estimated_area_from_spacing(input.size(), result.average_spacing);
+  double estimate = estimate_facet_count(area, result.criteria);
+  // A facet budget above what delta gives: the refinement is made finer, to
+  // about 1.5 times the budget for the collapse to choose from (the facet
+  // count grows as 1 / d'^2), but not finer than the data (d' >= avg).
+  const double budget = static_cast<double>(options.compaction.facets);
+  if (budget > 0 && estimate < 1.5 * budget && options.delta > 1) {
+    result.d_prime = std::max(1.0, options.delta * std::sqrt(estimate / (1.5 * budget))) * result.average_spacing;
+    result.criteria = RefinementCriteria::from_spacing(result.d_prime);
+    estimate = estimate_facet_count(area, result.criteria);
+  }
   result.estimated_facets = estimate;
   if (options.max_facets > 0 && estimate > static_cast<double>(options.max_facets))
-    throw InvalidArgument("delta = " + format_number(options.delta) + " would give about " + format_number(estimate) +
+    throw InvalidArgument("delta = " + format_number(result.d_prime / result.average_spacing) + " would give about " + format_number(estimate) +
                           " facets, above the limit of " + format_number(options.max_facets) + " (raise delta or --max-facets)");
 
   if (options.feature_mode == FeatureMode::Extract) {

@@ -138,7 +138,10 @@ nlohmann::json reconstruct_report(const ReconstructResult& r, const ReconstructO
                             {"collapsed_edges", r.decimation.collapsed_edges},
                             {"sharp_edges", r.decimation.feature_edges},
                             {"corner_vertices", r.decimation.corner_vertices},
-                            {"budget_missed", r.decimation.budget_missed}};
+                            {"budget_missed", r.decimation.budget_missed},
+                            {"rounds", r.decimation.rounds},
+                            {"frozen_vertices", r.decimation.frozen_vertices},
+                            {"crossing_pairs", r.decimation.crossing_pairs}};
   if (o.feature_mode != FeatureMode::None) report["protection"] = protection_report(r, o);
   if (o.feature_mode == FeatureMode::Extract) report["features"] = feature_report(r.features, o.features, diagonal);
   return report;

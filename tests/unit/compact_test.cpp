@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <algorithm>
 #include <random>
 
 #include "fixtures.h"
@@ -156,6 +157,34 @@ TEST(Decimation, ToleranceBoundsTheDistanceToTheFineMesh) {
   }
 }
 
+TEST(Decimation, TheTwoSidesOfAThinShellNeverCross) {
+  // A hollow ball whose wall (0.03) is thinner than the facets of every
+  // budget: collapsing one sphere on its own would cut through the other.
+  SurfaceMesh shell = test::sphere_mesh(4);
+  const SurfaceMesh inner = test::sphere_mesh(4, 0.97);
+  const auto offset = static_cast<std::uint32_t>(shell.vertices.size());
+  shell.vertices.insert(shell.vertices.end(), inner.vertices.begin(), inner.vertices.end());
+  for (const Triangle& t : inner.faces) shell.faces.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  ASSERT_FALSE(check_topology(shell).self_intersecting);
+  for (std::size_t budget : {100u, 400u, 2000u}) {
+    SurfaceMesh mesh = shell;
+    DecimationOptions options;
+    options.facets = budget;
+    const DecimationResult result = decimate(mesh, {}, options);
+    const TopologyReport topology = check_topology(mesh);
+    EXPECT_TRUE(topology.closed() && topology.manifold()) << budget;
+    EXPECT_FALSE(topology.self_intersecting) << budget;
+    EXPECT_EQ(topology.components, 2u) << budget;
+    EXPECT_EQ(result.crossing_pairs, 0u) << budget;
+    // The outer sphere's facets may sag into the wall by their sagitta
+    // e^2 / 8: with 200 facets a side (e about 0.35) they fit, with 50
+    // (e about 0.7) they cannot, and the collapse stops short of the budget.
+    if (budget >= 400) EXPECT_LE(mesh.faces.size(), budget) << budget;
+    else EXPECT_TRUE(result.budget_missed);
+    EXPECT_LT(mesh.faces.size(), shell.faces.size() / 4) << budget;
+  }
+}
+
 TEST(Decimation, AnOpenSheetKeepsItsBoundaryAndCorners) {
   // The cube's bottom face alone: a square sheet with a free boundary.
   SurfaceMesh cube = fine_cube(4, 5);
@@ -189,6 +218,22 @@ TEST(Decimation, RefusesANonManifoldMeshAndAnEmptyRequest) {
   EXPECT_THROW(options.check(), InvalidArgument);
 }
 
+TEST(Decimation, ReportsProgressAndACancelLeavesTheMeshAsItWas) {
+  const SurfaceMesh fine = test::sphere_mesh(4);
+  SurfaceMesh mesh = fine;
+  DecimationOptions options;
+  options.facets = 100;
+  std::vector<double> fractions;
+  decimate(mesh, {}, options, [&](const std::string&, double f) { return fractions.push_back(f), true; });
+  ASSERT_GE(fractions.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_EQ(fractions.back(), 1.0);
+  mesh = fine;
+  EXPECT_THROW(decimate(mesh, {}, options, [](const std::string&, double f) { return f < 0.5; }), Cancelled);
+  EXPECT_EQ(mesh.faces, fine.faces);
+  EXPECT_EQ(mesh.vertices, fine.vertices);
+}
+
 TEST(Decimation, ReconstructLandsWithinItsBudgetClosedWithTheCubesEdges) {
   const PointSet cloud = test::sample_with_normals(test::cube_mesh(1.0), 20000, 7);
   ReconstructOptions options;
@@ -201,6 +246,13 @@ TEST(Decimation, ReconstructLandsWithinItsBudgetClosedWithTheCubesEdges) {
   // The sharp edges stay within the refinement's error of the cube's.
   EXPECT_NEAR(sharp_length(result.mesh), 24.0, 0.5);
   EXPECT_LT(farthest_from_unit_cube(result.mesh), 0.02);
+  // A budget above what delta gives: a finer refinement, then the budget.
+  options.compaction.facets = 2 * result.decimation.input_facets;
+  const ReconstructResult finer = reconstruct(PointSet{cloud.points, {}, {}}, options);
+  expect_valid_closed(finer.mesh);
+  EXPECT_LT(finer.d_prime, result.d_prime);
+  EXPECT_LE(finer.mesh.faces.size(), options.compaction.facets);
+  EXPECT_GE(finer.mesh.faces.size(), options.compaction.facets * 9 / 10);
 }
 
 }  // namespace
