@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -145,7 +146,7 @@ class CurvePlacement {
   boost::optional<Point3> operator()(const Profile& profile) const {
     const VertexIndex v0 = profile.v0(), v1 = profile.v1();
     const bool c0 = curves_.on_curve[v0], c1 = curves_.on_curve[v1];
-    if (!c0 && !c1) return quadrics_.get_placement()(profile);
+    if (!c0 && !c1) return free_placement(profile);
     if (c0 && !c1) return profile.p0();
     if (c1 && !c0) return profile.p1();
     // Both on curves: only along a curve, and never moving a corner.
@@ -160,6 +161,24 @@ class CurvePlacement {
   }
 
  private:
+  /// Garland-Heckbert's optimum, unless it lies farther from the edge's
+  /// midpoint than the edge is long: a nearly singular quadric (a flat or
+  /// a cylindrical patch) puts its optimum anywhere along the flat
+  /// directions. Then the cheapest of the ends and the midpoint, Garland
+  /// and Heckbert's own fallback.
+  boost::optional<Point3> free_placement(const Profile& profile) const {
+    const boost::optional<Point3> optimum = quadrics_.get_placement()(profile);
+    const Point3 middle = CGAL::midpoint(profile.p0(), profile.p1());
+    if (optimum && CGAL::squared_distance(*optimum, middle) <= CGAL::squared_distance(profile.p0(), profile.p1())) return optimum;
+    boost::optional<Point3> best;
+    double best_cost = 0;
+    for (const Point3& candidate : {profile.p0(), profile.p1(), middle}) {
+      const auto cost = quadrics_.get_cost()(profile, boost::optional<Point3>(candidate));
+      if (cost && (!best || *cost < best_cost)) best = candidate, best_cost = *cost;
+    }
+    return best;
+  }
+
   const Quadrics& quadrics_;
   const Curves& curves_;
 };
@@ -237,10 +256,21 @@ class CurveKeeper : public SMS::Edge_collapse_visitor_base<Mesh> {
 };
 
 /// Stops when the facet count reaches the budget.
+/// Stops when the facet count reaches the budget, or past `cost_limit`:
+/// a round after crossings stops at the quadric error the first round
+/// reached, so that the frozen regions' share of the budget is not taken
+/// from the rest of the surface (which would then bend into chords across
+/// curved faces). `highest` gets the largest error the round went to.
 struct FacetBudget {
   const std::size_t& facets;
   std::size_t target;
-  bool operator()(const double&, const Profile&, std::size_t, std::size_t) const { return target > 0 && facets <= target; }
+  double cost_limit;
+  double* highest;
+  bool operator()(const double& cost, const Profile&, std::size_t, std::size_t) const {
+    if ((target > 0 && facets <= target) || cost > cost_limit) return true;
+    *highest = std::max(*highest, cost);
+    return false;
+  }
 };
 
 /// The filters: CGAL's bounded normal change; no new facet across another
@@ -328,6 +358,7 @@ DecimationResult decimate(SurfaceMesh& surface, const std::vector<Polyline>& fea
   if (options.facets > 0 && surface.faces.size() <= options.facets) return result;
   const double tolerance = options.tolerance * bounding_box(surface.vertices).diagonal();
   std::vector<bool> frozen(surface.vertices.size(), false);
+  double cost_limit = std::numeric_limits<double>::infinity();
   for (int round = 0;; ++round) {
     DecimationResult attempt = result;
     Mesh mesh = to_surface_mesh(surface);
@@ -343,7 +374,8 @@ DecimationResult decimate(SurfaceMesh& surface, const std::vector<Polyline>& fea
     Quadrics quadrics(mesh);
     // Progress follows the first collapse; a second one is a repair of it.
     const Progress silent;
-    SMS::edge_collapse(mesh, FacetBudget{state.facets, options.facets},
+    double highest = 0;
+    SMS::edge_collapse(mesh, FacetBudget{state.facets, options.facets, cost_limit, &highest},
                        CGAL::parameters::get_cost(quadrics)
                            .get_placement(CurvePlacement(quadrics, state.curves))
                            .filter(CollapseFilter(options.bounded_normal_change, tolerance, grid))
@@ -355,6 +387,7 @@ DecimationResult decimate(SurfaceMesh& surface, const std::vector<Polyline>& fea
     std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossing;
     CGAL::Polygon_mesh_processing::self_intersections(mesh, std::back_inserter(crossing));
     attempt.crossing_pairs = crossing.size();
+    if (round == 0) cost_limit = highest;
     if (crossing.empty() || round + 1 == kFreezeRounds || freeze_crossings(mesh, crossing, state, frozen) == 0) {
       // Cancelled up to here, the caller's mesh is as it was.
       report_progress(progress, "decimation", 1.0);
