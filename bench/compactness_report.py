@@ -7,6 +7,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 out, docs, budgets, models = sys.argv[1], sys.argv[2], [int(b) for b in sys.argv[3].split(",")], sys.argv[4:]
+corpus = [m for m in models if m.rsplit("-", 1)[-1].isdigit()]
 methods = [("ours", "ours", "o-"), ("o3d-9", "Open3D Poisson depth 9 + QEM", "^:"), ("o3d-10", "Open3D Poisson depth 10 + QEM", "v:"),
            ("pif+gh", "PIF + CGAL Garland-Heckbert", "s--"), ("pif", "PIF at a coarser delta", "x-.")]
 
@@ -40,8 +41,8 @@ lines = ["# Compact meshes: accuracy per facet", "",
          "k = 18, oriented by the tangent-aware MST; cropped to the cloud's box grown by 5%) + `simplify_quadric_decimation` to N; "
          "`pif+gh` = the PIF mesh (`--no-features`, delta 3.5) collapsed by the quadrics alone (`decimate --sharp-angle 0`); `pif` = "
          "`--no-features` at a delta that gives about N facets. Distances in U = 1/200 of the reference's bounding-box "
-         "diagonal, measured by `sharpmesh eval`; *valid* = closed, manifold and free of self-intersections. "
-         "The last three models come from the generated corpus (tests/corpus).", ""]
+         "diagonal, measured by `sharpmesh eval`; *valid* = closed, manifold and free of self-intersections."
+         + (" " + ", ".join(corpus) + " come from the generated corpus (tests/corpus)." if corpus else ""), ""]
 columns = min(4, len(models))
 rows = 2 * ((len(models) + columns - 1) // columns)
 fig, axes = plt.subplots(rows, columns, figsize=(4.5 * columns, 3.6 * rows), squeeze=False)

@@ -10,6 +10,7 @@
 #include "sharpmesh/eval.h"
 #include "sharpmesh/io.h"
 #include "sharpmesh/meshing.h"
+#include "sharpmesh/report.h"
 
 namespace sharpmesh::cli {
 
@@ -76,6 +77,9 @@ Command add_decimate(CLI::App& app) {
         std::fprintf(stderr, "decimate: warning: the budget was not reached: every further collapse would move a corner, leave a "
                              "sharp edge, fold a facet or break the tolerance\n");
     }
+    nlohmann::json counts = nlohmann::json::parse(decimation_report_json(result));
+    counts["output_facets"] = mesh.faces.size();  // after the self-intersection check's repair, if it ran
+    counts["boundary_edges"] = count_boundary_edges(mesh);
     nlohmann::json parameters;
     for (const OptionField<DecimationOptions>& field : decimation_option_fields())
       std::visit([&](const auto& value) { parameters[field.name] = value; }, field.get(o->decimation));
@@ -84,19 +88,9 @@ Command add_decimate(CLI::App& app) {
                                   {"input", o->input},
                                   {"output", o->output},
                                   {"parameters", parameters},
-                                  {"counts",
-                                   {{"input_facets", result.input_facets},
-                                    {"output_facets", mesh.faces.size()},
-                                    {"collapsed_edges", result.collapsed_edges},
-                                    {"sharp_edges", result.feature_edges},
-                                    {"corner_vertices", result.corner_vertices},
-                                    {"budget_missed", result.budget_missed},
-                                    {"rounds", result.rounds},
-                                    {"frozen_vertices", result.frozen_vertices},
-                                    {"boundary_edges", count_boundary_edges(mesh)}}},
+                                  {"counts", counts},
                                   {"self_intersections",
-                                   {{"after_collapse_pairs", result.crossing_pairs},
-                                    {"found_pairs", repair.intersecting_pairs},
+                                   {{"found_pairs", repair.intersecting_pairs},
                                     {"remaining_pairs", repair.remaining_pairs},
                                     {"written_invalid", repair.remaining_pairs > 0}}},
                                   {"stages", stages_json(stages)},

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "sharpmesh/compact.h"
 #include "sharpmesh/features.h"
 #include "sharpmesh/reconstruct.h"
 #include "sharpmesh/stereo.h"
@@ -23,6 +24,10 @@ std::string normals_report_json(const NormalsResult& result, const ReconstructOp
 
 /// `sharpmesh features --report` without the command line's own keys.
 std::string feature_report_json(const FeatureResult& result, const FeatureOptions& options, double diagonal);
+
+/// The counts of decimate() as `sharpmesh decimate --report` gives them (and
+/// reconstruct's report under "decimation").
+std::string decimation_report_json(const DecimationResult& result);
 
 /// `sharpmesh stereo --report` without the command line's own keys; `model`
 /// as reconstruct_stereo left it (its kept tracks).

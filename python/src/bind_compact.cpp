@@ -3,6 +3,7 @@
 // keywords.
 #include "options.h"
 #include "sharpmesh/compact.h"
+#include "sharpmesh/report.h"
 
 namespace sharpmesh::python {
 
@@ -17,17 +18,7 @@ void bind_compact(py::module_& m) {
           const std::vector<Polyline> given = to_polylines(curves, "curves");
           ProgressBridge bridge(progress);
           const DecimationResult r = without_gil(bridge, [&] { return decimate(surface, given, o, bridge.callback()); });
-          py::dict report;
-          report["input_facets"] = r.input_facets;
-          report["output_facets"] = r.output_facets;
-          report["collapsed_edges"] = r.collapsed_edges;
-          report["sharp_edges"] = r.feature_edges;
-          report["corner_vertices"] = r.corner_vertices;
-          report["budget_missed"] = r.budget_missed;
-          report["rounds"] = r.rounds;
-          report["frozen_vertices"] = r.frozen_vertices;
-          report["crossing_pairs"] = r.crossing_pairs;
-          return py::make_tuple(make_mesh(surface), report);
+          return py::make_tuple(make_mesh(surface), json_report(decimation_report_json(r)));
         },
         py::arg("mesh"), py::kw_only(), py::arg("curves") = py::none(), py::arg("options") = py::none(),
         py::arg("progress") = py::none(),

@@ -6,6 +6,7 @@ namespace sharpmesh {
 namespace detail {
 
 nlohmann::json feature_report(const FeatureResult& result, const FeatureOptions& options, double diagonal);
+nlohmann::json decimation_report(const DecimationResult& result);
 
 namespace {
 
@@ -133,15 +134,7 @@ nlohmann::json reconstruct_report(const ReconstructResult& r, const ReconstructO
       {"warnings", warnings},
       {"stages", stages_json(r.stages)}};
   if (r.decimation.input_facets > 0)
-    report["decimation"] = {{"input_facets", r.decimation.input_facets},
-                            {"output_facets", r.decimation.output_facets},
-                            {"collapsed_edges", r.decimation.collapsed_edges},
-                            {"sharp_edges", r.decimation.feature_edges},
-                            {"corner_vertices", r.decimation.corner_vertices},
-                            {"budget_missed", r.decimation.budget_missed},
-                            {"rounds", r.decimation.rounds},
-                            {"frozen_vertices", r.decimation.frozen_vertices},
-                            {"crossing_pairs", r.decimation.crossing_pairs}};
+    report["decimation"] = decimation_report(r.decimation);
   if (o.feature_mode != FeatureMode::None) report["protection"] = protection_report(r, o);
   if (o.feature_mode == FeatureMode::Extract) report["features"] = feature_report(r.features, o.features, diagonal);
   return report;
