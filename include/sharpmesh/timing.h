@@ -1,9 +1,12 @@
 // Wall time and peak resident memory per pipeline stage (a Geogram-style
-// stopwatch). Peak memory is per stage: the kernel's high-water mark is
-// reset when a stage starts (Linux /proc/self/clear_refs).
+// stopwatch). The kernel's high-water mark of the process is never reset, so
+// `/usr/bin/time -v`, getrusage and a benchmark's peak memory stay true; a
+// stage's own peak is that mark when the stage raised it, otherwise the
+// highest resident size a sampler saw during the stage.
 #pragma once
 
 #include <chrono>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,8 +18,10 @@ struct StageTiming {
   std::size_t peak_rss_bytes = 0;  ///< peak resident memory during the stage
 };
 
-/// Current peak resident set size of the process, in bytes.
+/// Peak resident set size of the process so far (the kernel's VmHWM), in bytes.
 std::size_t peak_rss_bytes();
+/// Current resident set size of the process, in bytes.
+std::size_t current_rss_bytes();
 
 /// Times a scope; appends its StageTiming to `out` when stopped or destroyed.
 class StageTimer {
@@ -28,9 +33,12 @@ class StageTimer {
   void stop();
 
  private:
+  class Sampler;
   std::vector<StageTiming>& out_;
   std::string name_;
   std::chrono::steady_clock::time_point start_;
+  std::size_t process_peak_at_start_ = 0;
+  std::unique_ptr<Sampler> sampler_;
   bool stopped_ = false;
 };
 

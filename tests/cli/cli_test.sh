@@ -55,7 +55,15 @@ case "$case_name" in
     python3 -c "import json; e=json.load(open('e.json'))['evaluation']; assert e['hausdorff']['value']<1e-9 and e['topology']['closed']" || fail "bad eval" ;;
   reconstruct-small)
     $bin sample "$data/meshes/fandisk.off" -n 20000 --seed 1 -o s.ply -q || fail "sample failed"
-    $bin reconstruct s.ply -o m.off --no-features --report r.json -q || fail "reconstruct failed"
+    python3 - "$bin" <<'PY' || fail "reconstruct failed, or its peak memory disagrees with the kernel's"
+import json, resource, subprocess, sys
+subprocess.run([sys.argv[1], "reconstruct", "s.ply", "-o", "m.off", "--no-features", "--report", "r.json", "-q"], check=True)
+kernel_peak_mib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024  # of the largest child: reconstruct
+r = json.load(open("r.json"))
+stage_peak = max(s["peak_memory_mib"] for s in r["stages"])
+# No stage above the process's own peak, and the report's peak is the kernel's (up to the pages the report's writing touches).
+assert stage_peak <= r["peak_memory_mib"] + 1e-9 and abs(r["peak_memory_mib"] - kernel_peak_mib) <= 0.05 * kernel_peak_mib + 4, (stage_peak, r["peak_memory_mib"], kernel_peak_mib)
+PY
     $bin eval m.off --reference "$data/meshes/fandisk.off" --json e.json -q || fail "eval failed"
     python3 - <<'PY' || fail "reconstruction out of bounds"
 import json
