@@ -2,9 +2,10 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "sharpmesh/cloud_scan.h"
+#include "sharpmesh/errors.h"
 #include "sharpmesh/io.h"
 #include "sharpmesh/las.h"
-#include "sharpmesh/pointset.h"
 
 namespace sharpmesh::cli {
 
@@ -25,40 +26,35 @@ Command add_info(CLI::App& app) {
     check_output(common->report, "report");
     const auto start = std::chrono::steady_clock::now();
     const bool lidar = is_las_path(options->input);
-    // LAS/LAZ: one pass over the chunks gives the points and the class histogram.
-    PointSet points;
     LasInfo las;
-    std::vector<std::uint64_t> classes(256, 0);
-    const auto read_start = std::chrono::steady_clock::now();
-    if (lidar) {
-      LasReader reader(options->input);
-      las = reader.info();
-      for (std::size_t c = 0; c < reader.chunk_count(); ++c) {
-        LasPoints chunk = reader.read_chunk(c);
-        for (std::uint8_t k : chunk.classification) ++classes[k];
-        points.points.insert(points.points.end(), chunk.positions.begin(), chunk.positions.end());
-        points.colors.insert(points.colors.end(), chunk.colors.begin(), chunk.colors.end());
-      }
-    } else {
-      points = read_point_set(options->input);
-    }
-    const double read_seconds = seconds_since(read_start);
+    if (lidar) las = LasReader(options->input).info();
     ProgressPrinter printer(common->quiet);
-    check_point_set(points, 1, options->input.c_str());
-    const BoundingBox box = bounding_box(points.points);
-    double spacing = -1;
-    if (!options->no_spacing && points.size() > static_cast<std::size_t>(options->k)) spacing = average_spacing(points, options->k, printer.callback());
+    // Streamed: memory holds a block of points, the whole cloud only up to
+    // CloudScanOptions::exact_spacing_limit points (for the exact spacing).
+    CloudScanOptions scan_options;
+    scan_options.k = options->k;
+    scan_options.spacing = !options->no_spacing;
+    const CloudScan scan = scan_point_cloud(options->input, scan_options, printer.callback());
+    if (scan.points == 0) throw InvalidInput(options->input + ": the file holds no points");
+    const BoundingBox& box = scan.box;
+    if (!(box.diagonal() > 0) || !std::isfinite(box.diagonal()))
+      throw InvalidInput(options->input + ": all points are at the same location (or the extent overflows)");
+    const double spacing = scan.average_spacing;
     if (!common->quiet) {
       std::printf("file:            %s\n", options->input.c_str());
-      std::printf("points:          %zu\n", points.size());
-      std::printf("normals:         %s\n", points.has_normals() ? "yes" : "no");
-      std::printf("colours:         %s\n", points.has_colors() ? "yes" : "no");
+      std::printf("points:          %llu\n", static_cast<unsigned long long>(scan.points));
+      std::printf("normals:         %s\n", scan.normals ? "yes" : "no");
+      std::printf("colours:         %s\n", scan.colors ? "yes" : "no");
       std::printf("bounding box:    [%g %g %g] - [%g %g %g]\n", box.min[0], box.min[1], box.min[2], box.max[0], box.max[1], box.max[2]);
       std::printf("diagonal:        %g\n", box.diagonal());
-      if (spacing >= 0)
-        std::printf("average spacing: %g (k = %d; %.3g of the diagonal)\n", spacing, options->k, spacing / box.diagonal());
-      else if (!options->no_spacing)
+      if (spacing >= 0) {
+        std::printf("average spacing: %g (k = %d; %.3g of the diagonal", spacing, options->k, spacing / box.diagonal());
+        if (!scan.spacing_exact)
+          std::printf("; the mean over %llu points of blocks of space drawn over the cloud", static_cast<unsigned long long>(scan.spacing_points));
+        std::printf(")\n");
+      } else if (!options->no_spacing) {
         std::printf("average spacing: n/a (fewer than k + 1 = %d points)\n", options->k + 1);
+      }
       if (lidar) {
         std::printf("LAS:             version %d.%d, point format %d, %u-byte records\n", las.version_major, las.version_minor,
                     las.point_format, unsigned(las.record_length));
@@ -70,30 +66,35 @@ Command add_info(CLI::App& app) {
                     las.bounds.max[1], las.bounds.max[2]);
         std::printf("classes:        ");
         for (int c = 0; c < 256; ++c)
-          if (classes[c] > 0) std::printf(" %d: %llu", c, static_cast<unsigned long long>(classes[c]));
+          if (scan.classes[c] > 0) std::printf(" %d: %llu", c, static_cast<unsigned long long>(scan.classes[c]));
         std::printf("\n");
       }
     }
     nlohmann::json report = {{"command", "info"},
                              {"input", options->input},
                              {"parameters", {{"k", options->k}}},
-                             {"counts", {{"points", points.size()}}},
-                             {"normals", points.has_normals()},
-                             {"colors", points.has_colors()},
+                             {"counts", {{"points", scan.points}}},
+                             {"normals", scan.normals},
+                             {"colors", scan.colors},
                              {"bounding_box", {{"min", box.min}, {"max", box.max}, {"diagonal", box.diagonal()}}},
-                             {"read_seconds", read_seconds},
+                             {"passes", scan.passes},
+                             {"read_seconds", scan.read_seconds},
                              {"seconds", seconds_since(start)}};
     if (lidar) {
       nlohmann::json histogram = nlohmann::json::object();
       for (int c = 0; c < 256; ++c)
-        if (classes[c] > 0) histogram[std::to_string(c)] = classes[c];
+        if (scan.classes[c] > 0) histogram[std::to_string(c)] = scan.classes[c];
       report["las"] = {{"version", std::to_string(las.version_major) + "." + std::to_string(las.version_minor)},
                        {"point_format", las.point_format}, {"record_length", las.record_length}, {"compressed", las.compressed},
                        {"laszip_version", las.laszip_version}, {"chunk_size", las.chunk_size}, {"chunks", las.chunks},
                        {"scale", las.scale}, {"offset", las.offset},
                        {"header_bounds", {{"min", las.bounds.min}, {"max", las.bounds.max}}}, {"classes", histogram}};
     }
-    if (spacing >= 0) report["average_spacing"] = length_json(spacing, box.diagonal());
+    if (spacing >= 0) {
+      report["average_spacing"] = length_json(spacing, box.diagonal());
+      report["average_spacing"]["exact"] = scan.spacing_exact;
+      report["average_spacing"]["measured_points"] = scan.spacing_points;
+    }
     write_report(common->report, report);
   };
   return {sub, run, common};

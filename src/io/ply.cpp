@@ -209,6 +209,39 @@ double color_scale(Scalar type) {
   }
 }
 
+/// Where a vertex record keeps its position, normal and colour.
+struct VertexLayout {
+  VertexLayout(const std::string& path, const Element& e) : element(&e) {
+    ix = index_of(e, {"x"}); iy = index_of(e, {"y"}); iz = index_of(e, {"z"});
+    if (ix < 0 || iy < 0 || iz < 0)
+      throw InvalidInput(path + ": line " + format_number(e.header_line) + ": vertex element lacks x, y or z");
+    inx = index_of(e, {"nx", "normal_x"}); iny = index_of(e, {"ny", "normal_y"}); inz = index_of(e, {"nz", "normal_z"});
+    ir = index_of(e, {"red", "r", "diffuse_red"}); ig = index_of(e, {"green", "g", "diffuse_green"});
+    ib = index_of(e, {"blue", "b", "diffuse_blue"});
+  }
+  bool normals() const { return inx >= 0 && iny >= 0 && inz >= 0; }
+  bool colors() const { return ir >= 0 && ig >= 0 && ib >= 0; }
+  /// Stores record `n`'s values at `at` of `out` (sized by the caller).
+  void store(const std::string& path, const std::vector<double>& values, std::uint64_t n, PointSet& out, std::size_t at) const {
+    Vec3& q = out.points[at];
+    q = {values[ix], values[iy], values[iz]};
+    check_finite(q, path, "vertex " + std::to_string(n));
+    if (out.has_normals()) {
+      out.normals[at] = {values[inx], values[iny], values[inz]};
+      check_finite(out.normals[at], path, "normal of vertex " + std::to_string(n));
+    }
+    if (out.has_colors()) {
+      const int idx[3] = {ir, ig, ib};
+      for (int c = 0; c < 3; ++c) {
+        const double v = values[idx[c]] * color_scale(element->properties[idx[c]].type);
+        out.colors[at][c] = static_cast<std::uint8_t>(std::clamp(std::isfinite(v) ? std::round(v) : 0.0, 0.0, 255.0));
+      }
+    }
+  }
+  const Element* element;
+  int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, ir = -1, ig = -1, ib = -1;
+};
+
 }  // namespace
 
 PlyContents read_ply(const std::string& path) {
@@ -237,19 +270,15 @@ PlyContents read_ply(const std::string& path) {
   for (const Element& e : header.elements) {
     const bool is_vertex = e.name == "vertex";
     const bool is_face = e.name == "face";
-    int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, ir = -1, ig = -1, ib = -1, iface = -1;
+    int iface = -1;
+    std::optional<VertexLayout> layout;
     if (is_vertex) {
       if (have_vertices) throw InvalidInput(path + ": more than one 'vertex' element");
       have_vertices = true;
-      ix = index_of(e, {"x"}); iy = index_of(e, {"y"}); iz = index_of(e, {"z"});
-      if (ix < 0 || iy < 0 || iz < 0)
-        throw InvalidInput(path + ": line " + format_number(e.header_line) + ": vertex element lacks x, y or z");
-      inx = index_of(e, {"nx", "normal_x"}); iny = index_of(e, {"ny", "normal_y"}); inz = index_of(e, {"nz", "normal_z"});
-      ir = index_of(e, {"red", "r", "diffuse_red"}); ig = index_of(e, {"green", "g", "diffuse_green"});
-      ib = index_of(e, {"blue", "b", "diffuse_blue"});
+      layout.emplace(path, e);
       out.points.points.resize(e.count);
-      if (inx >= 0 && iny >= 0 && inz >= 0) out.points.normals.resize(e.count);
-      if (ir >= 0 && ig >= 0 && ib >= 0) out.points.colors.resize(e.count);
+      if (layout->normals()) out.points.normals.resize(e.count);
+      if (layout->colors()) out.points.colors.resize(e.count);
     }
     if (is_face) {
       for (std::size_t i = 0; i < e.properties.size(); ++i)
@@ -288,20 +317,7 @@ PlyContents read_ply(const std::string& path) {
       }
       reader.end_record(label, n);
       if (is_vertex) {
-        Vec3& q = out.points.points[n];
-        q = {values[ix], values[iy], values[iz]};
-        check_finite(q, path, "vertex " + std::to_string(n));
-        if (out.points.has_normals()) {
-          out.points.normals[n] = {values[inx], values[iny], values[inz]};
-          check_finite(out.points.normals[n], path, "normal of vertex " + std::to_string(n));
-        }
-        if (out.points.has_colors()) {
-          const int idx[3] = {ir, ig, ib};
-          for (int c = 0; c < 3; ++c) {
-            const double v = values[idx[c]] * color_scale(e.properties[idx[c]].type);
-            out.points.colors[n][c] = static_cast<std::uint8_t>(std::clamp(std::isfinite(v) ? std::round(v) : 0.0, 0.0, 255.0));
-          }
-        }
+        layout->store(path, values, n, out.points, static_cast<std::size_t>(n));
       } else if (is_face) {
         if (polygon.size() < 3)
           throw InvalidInput(path + ": face " + format_number(n) + ": has " + format_number(polygon.size()) + " vertices (needs 3 or more)");
@@ -313,6 +329,140 @@ PlyContents read_ply(const std::string& path) {
   }
   if (!have_vertices) throw InvalidInput(path + ": PLY file has no 'vertex' element");
   return out;
+}
+
+namespace {
+
+/// The vertex records of a PLY file, read block by block (PointStream).
+class PlySource final : public PointBlockSource {
+ public:
+  PlySource(const std::string& path, Header header, std::size_t vertex_element, std::uint64_t skip)
+      : path_(path), header_(std::move(header)), element_(header_.elements[vertex_element]), layout_(path, element_),
+        values_(element_.properties.size()) {
+    if (header_.encoding == Encoding::Ascii) {
+      lines_.emplace(path, header_.data_offset);
+      cursor_ = LineCursor(std::string_view(), header_.data_first_line);
+      skip_records_ = skip;
+    } else {
+      binary_ = open_file(path);
+      binary_.seekg(static_cast<std::streamoff>(header_.data_offset + skip));
+      record_size_ = element_.min_record_size();
+    }
+  }
+  bool next(PointSet& block, std::size_t max_points, std::vector<std::uint8_t>* classes) override {
+    if (classes) classes->clear();
+    const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(max_points, element_.count - done_));
+    block = PointSet{};
+    block.points.resize(count);
+    if (layout_.normals()) block.normals.resize(count);
+    if (layout_.colors()) block.colors.resize(count);
+    if (header_.encoding == Encoding::Ascii) read_ascii(block, count);
+    else read_binary(block, count);
+    done_ += count;
+    return count > 0;
+  }
+  std::optional<std::uint64_t> declared_count() const override { return element_.count; }
+
+ private:
+  void read_binary(PointSet& block, std::size_t count) {
+    bytes_.resize(count * record_size_);
+    binary_.read(bytes_.data(), static_cast<std::streamsize>(bytes_.size()));
+    if (static_cast<std::size_t>(binary_.gcount()) != bytes_.size())
+      throw InvalidInput(path_ + ": file ends inside vertex " + format_number(done_ + binary_.gcount() / record_size_) +
+                         " (truncated binary data)");
+    ValueReader reader(path_, bytes_, header_.encoding, 0);
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint64_t n = done_ + i;
+      for (std::size_t p = 0; p < values_.size(); ++p) values_[p] = reader.read(element_.properties[p].type, "vertex", n);
+      layout_.store(path_, values_, n, block, i);
+    }
+  }
+  void read_ascii(PointSet& block, std::size_t count) {
+    for (std::size_t i = 0; i < count;) {
+      std::string_view line;
+      if (!cursor_.next(line)) {
+        std::string_view text;
+        if (!lines_->next(text))
+          throw InvalidInput(path_ + ": file ends before vertex " + format_number(done_ + i) + " (truncated)");
+        cursor_ = LineCursor(text, cursor_.line_number() + 1);
+        continue;
+      }
+      if (strip_comment(line).empty()) continue;
+      if (skip_records_ > 0) {  // a record of an element before the vertices
+        --skip_records_;
+        continue;
+      }
+      const std::uint64_t n = done_ + i;
+      ValueReader reader(path_, line, Encoding::Ascii, cursor_.line_number());
+      reader.begin_record("vertex", n);
+      for (std::size_t p = 0; p < values_.size(); ++p) values_[p] = reader.read(element_.properties[p].type, "vertex", n);
+      reader.end_record("vertex", n);
+      layout_.store(path_, values_, n, block, i);
+      ++i;
+    }
+  }
+
+  std::string path_;
+  Header header_;
+  const Element& element_;
+  VertexLayout layout_;
+  std::vector<double> values_;
+  std::uint64_t done_ = 0;
+  // ASCII
+  std::optional<LineBlocks> lines_;
+  LineCursor cursor_{std::string_view(), 1};
+  std::uint64_t skip_records_ = 0;
+  // binary
+  std::ifstream binary_;
+  std::size_t record_size_ = 0;
+  std::string bytes_;
+};
+
+/// The header of a PLY file, read up to its end_header line.
+std::string read_ply_header_text(const std::string& path) {
+  std::ifstream in = open_file(path);
+  std::string text;
+  char buffer[65536];
+  for (;;) {
+    in.read(buffer, sizeof buffer);
+    const auto got = static_cast<std::size_t>(in.gcount());
+    const std::size_t searched_from = text.size() >= 16 ? text.size() - 16 : 0;
+    text.append(buffer, got);
+    const std::size_t end = text.find("end_header", searched_from);
+    if (end != std::string::npos) {
+      const std::size_t newline = text.find('\n', end);
+      if (newline != std::string::npos || got < sizeof buffer) return text;
+    }
+    if (got < sizeof buffer || text.size() > (std::size_t(16) << 20)) return text;  // parse_header names what is missing
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<PointBlockSource> open_ply_points(const std::string& path) {
+  const std::string text = read_ply_header_text(path);
+  Header header = parse_header(path, text);
+  const auto vertex = std::find_if(header.elements.begin(), header.elements.end(), [](const Element& e) { return e.name == "vertex"; });
+  if (vertex == header.elements.end()) throw InvalidInput(path + ": PLY file has no 'vertex' element");
+  bool streamable = vertex->fixed_size();
+  std::uint64_t skip = 0;  // bytes (binary) or records (ASCII) before the vertices
+  for (auto e = header.elements.begin(); e != vertex; ++e) {
+    if (header.encoding == Encoding::Ascii) skip += e->count;
+    else if (e->fixed_size()) skip += e->count * e->min_record_size();
+    else streamable = false;
+  }
+  if (!streamable) return points_in_memory(read_ply(path).points);
+  if (header.encoding != Encoding::Ascii) {
+    std::ifstream in = open_file(path);
+    in.seekg(0, std::ios::end);
+    const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(0, in.tellg()));
+    const std::uint64_t needed = header.data_offset + skip + vertex->count * vertex->min_record_size();
+    if (needed > size)
+      throw InvalidInput(path + ": file is truncated: the header needs at least " + format_number(needed - header.data_offset) +
+                         " bytes of data, the file has " + format_number(size - std::min<std::uint64_t>(size, header.data_offset)));
+  }
+  const std::size_t index = static_cast<std::size_t>(vertex - header.elements.begin());
+  return std::make_unique<PlySource>(path, std::move(header), index, skip);
 }
 
 namespace {
