@@ -8,8 +8,10 @@ parser.add_argument("--build", required=True)
 parser.add_argument("--root", required=True)
 parser.add_argument("--max", type=int, default=30_000_000)
 parser.add_argument("--peers-max", type=int, default=2_000_000)
+parser.add_argument("--tiled-min", type=int, default=1_000_000)
+parser.add_argument("--binary", help="the sharpmesh to measure (default: BUILD's; a copy lets the build go on meanwhile)")
 args = parser.parse_args()
-binary = os.path.join(args.build, "apps/sharpmesh/sharpmesh")
+binary = args.binary or os.path.join(args.build, "apps/sharpmesh/sharpmesh")
 out = os.path.join(args.build, "bench-results/scale")
 os.makedirs(out, exist_ok=True)
 reference = os.path.join(args.root, ".cache/data/meshes/fandisk.off")
@@ -45,13 +47,21 @@ def evaluate(mesh, tag):
         subprocess.run([binary, "eval", mesh, "--reference", reference, "--json", report, "-q"], check=True)
     e = json.load(open(report))["evaluation"]
     t = e["topology"]
-    return {"facets": e["facets"], "hausdorff_U": e["hausdorff"]["U"], "mean_U": e["mean"]["U"],
-            "valid": t["closed"] and t["manifold"] and not t["self_intersecting"]}
+    result = {"facets": e["facets"], "hausdorff_U": e["hausdorff"]["U"], "mean_U": e["mean"]["U"],
+              "valid": t["closed"] and t["manifold"] and not t["self_intersecting"], "boundary_edges": t["boundary_edges"]}
+    edges = f"{tag}.edges.txt"
+    if os.path.exists(edges):
+        features = f"{tag}.features.json"
+        if not os.path.exists(features):
+            subprocess.run([binary, "eval-features", edges, "--reference", reference, "--report", features, "-q"], check=True)
+        result["feature_recall"] = json.load(open(features))["evaluation"]["recall"]
+    return result
 
 
 def ours(cloud, tag, extra=()):
     def make():
-        measured = run([binary, "reconstruct", cloud, "-o", f"{tag}.ply", "--report", f"{tag}.report.json", "-q", *extra],
+        measured = run([binary, "reconstruct", cloud, "-o", f"{tag}.ply", "--report", f"{tag}.report.json", "-q", *extra,
+                        *([] if "--no-features" in extra else ["--sharp-edges", f"{tag}.edges.txt"])],
                        f"{tag}.log")
         if measured is None:
             return None
@@ -85,6 +95,13 @@ for n in sizes:
     row = {"points": n, "ours": ours(cloud, os.path.join(out, f"fandisk-{n}-ours"))}
     if row["ours"]:
         row["ours"].update(evaluate(os.path.join(out, f"fandisk-{n}-ours.ply"), os.path.join(out, f"fandisk-{n}-ours")))
+    if n >= args.tiled_min:
+        # The same cloud in 8 slabs (sharpmesh/tiled.h), against the one run.
+        tag = os.path.join(out, f"fandisk-{n}-tiled-8")
+        row["tiled"] = ours(cloud, tag, ["--tiles", "8"])
+        if row["tiled"]:
+            row["tiled"].update(evaluate(tag + ".ply", tag))
+            row["tiled"]["seams"] = json.load(open(tag + ".report.json"))["tiling"]["seams"]
     if n <= args.peers_max:
         tag = os.path.join(out, f"fandisk-{n}-pif")
         row["pif"] = ours(cloud, tag, ["--no-features"])

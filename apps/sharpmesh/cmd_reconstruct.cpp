@@ -7,6 +7,9 @@
 #include "option_flags.h"
 #include "sharpmesh/reconstruct.h"
 #include "sharpmesh/report.h"
+#include "sharpmesh/tiled.h"
+
+#include <cmath>
 
 namespace sharpmesh::cli {
 
@@ -17,6 +20,7 @@ Command add_reconstruct(CLI::App& app) {
     bool no_features = false, allow_invalid = false, ascii = false;
     double time_limit = 0;
     ReconstructOptions reconstruct;
+    TilingOptions tiling{1};
   };
   auto o = std::make_shared<Options>();
   auto common = std::make_shared<CommonOptions>();
@@ -31,6 +35,7 @@ Command add_reconstruct(CLI::App& app) {
       ->excludes(no_features);
   sub->add_option("--sharp-edges", o->sharp_edges_out, "Write the mesh edges that represent the protected features (polylines)");
   add_option_fields(*sub, o->reconstruct, reconstruct_option_fields(), {"threads"});
+  add_option_fields(*sub, o->tiling, tiling_option_fields(), {});
   sub->add_option("--time-limit", o->time_limit,
                   "Seconds the whole reconstruction may take; past them it stops with exit status 1 and writes nothing (0: no limit)")
       ->check(CLI::NonNegativeNumber)
@@ -41,6 +46,7 @@ Command add_reconstruct(CLI::App& app) {
     check_output(o->output, "mesh");
     check_output(o->sharp_edges_out, "sharp edges");
     check_output(common->report, "report");
+    o->tiling.check();
     ReconstructOptions& options = o->reconstruct;
     options.threads = common->threads;
     options.feature_mode = o->no_features ? FeatureMode::None : o->features_file.empty() ? FeatureMode::Extract : FeatureMode::Given;
@@ -62,14 +68,21 @@ Command add_reconstruct(CLI::App& app) {
       return printed(stage, fraction);
     };
     ReconstructResult result;
+    TiledResult tiled;
     try {
-      result = reconstruct(points, options, progress);
+      if (o->tiling.tiles > 1) {
+        tiled = reconstruct_tiled(points, options, o->tiling, progress);
+        result = std::move(tiled.merged);
+      } else {
+        result = reconstruct(points, options, progress);
+      }
     } catch (const Cancelled&) {
       if (!timed_out) throw;
       throw Error(o->input + ": the reconstruction ran past --time-limit " + format_number(limit) + " s; nothing written");
     }
-    const bool crossing = options.repair_self_intersections ? result.repairs.intersection_repair.remaining_pairs > 0
-                                                             : !self_intersecting_faces(result.mesh).empty();
+    // A tiled mesh is checked whole here: each tile repaired its own.
+    const bool crossing = options.repair_self_intersections && o->tiling.tiles <= 1 ? result.repairs.intersection_repair.remaining_pairs > 0
+                                                                                   : !self_intersecting_faces(result.mesh).empty();
     if (crossing && !o->allow_invalid)
       throw Error(o->input + ": the mesh has facets that cross others" +
                   (options.repair_self_intersections ? " after " + std::to_string(result.repairs.intersection_repair.rounds) + " repair rounds" : std::string()) +
@@ -86,6 +99,14 @@ Command add_reconstruct(CLI::App& app) {
     if (!common->quiet) {
       printer.message("reconstruct: " + std::to_string(result.input_points) + " points -> " + std::to_string(result.mesh.faces.size()) +
                       " facets, " + std::to_string(result.mesh.vertices.size()) + " vertices -> " + o->output);
+      for (const SeamResult& seam : tiled.seams) {
+        char line[300];
+        std::snprintf(line, sizeof line, "  seam at %g: %s", seam.position,
+                      seam.stitched ? (std::to_string(seam.chains) + " curves welded, " + std::to_string(seam.inserted_vertices) +
+                                       " vertices inserted").c_str()
+                                    : ("not welded (" + seam.failure + ")").c_str());
+        printer.message(line);
+      }
       if (result.repairs.trimmed_facets > 0)
         printer.message("  open surface: " + std::to_string(result.repairs.trimmed_facets) + " facets far from the data removed, " +
                         std::to_string(result.repairs.clipped_facets) + " cut along the data's edge, " +
@@ -119,6 +140,17 @@ Command add_reconstruct(CLI::App& app) {
     report["self_intersections"]["written_invalid"] = crossing;
     report["stages"] = stages_json(stages);
     report["seconds"] = seconds_since(start);
+    if (o->tiling.tiles > 1) {
+      nlohmann::json tiles = nlohmann::json::array(), seams = nlohmann::json::array();
+      for (const TileResult& t : tiled.tiles)
+        tiles.push_back({{"low", std::isfinite(t.low) ? nlohmann::json(t.low) : nlohmann::json(nullptr)},
+                         {"high", std::isfinite(t.high) ? nlohmann::json(t.high) : nlohmann::json(nullptr)}, {"points", t.points},
+                         {"facets", t.facets}, {"seconds", t.seconds}, {"peak_memory_mib", t.peak_rss_bytes / 1048576.0}});
+      for (const SeamResult& seam : tiled.seams)
+        seams.push_back({{"position", seam.position}, {"stitched", seam.stitched}, {"failure", seam.failure}, {"chains", seam.chains},
+                         {"inserted_vertices", seam.inserted_vertices}, {"max_move_d_prime", seam.max_move}});
+      report["tiling"] = {{"axis", tiled.axis}, {"tiles", tiles}, {"seams", seams}};
+    }
     if (!common->quiet)
       for (const Warning& w : result.warnings) std::fprintf(stderr, "reconstruct: warning: %s\n", w.message.c_str());
     write_report(common->report, report);

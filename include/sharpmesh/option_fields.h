@@ -55,6 +55,7 @@ struct FeatureOptions;
 struct ReconstructOptions;
 struct ReconstructTuning;
 struct StereoReconstructionOptions;
+struct TilingOptions;
 
 /// FeatureOptions (thesis 7.2).
 const std::vector<OptionField<FeatureOptions>>& feature_option_fields();
@@ -69,5 +70,7 @@ const std::vector<OptionField<ReconstructTuning>>& tuning_option_fields();
 const std::vector<OptionField<DecimationOptions>>& decimation_option_fields();
 /// StereoReconstructionOptions (thesis Ch. 6 and the fill beyond it).
 const std::vector<OptionField<StereoReconstructionOptions>>& stereo_option_fields();
+/// TilingOptions (sharpmesh/tiled.h: reconstruct in slabs).
+const std::vector<OptionField<TilingOptions>>& tiling_option_fields();
 
 }  // namespace sharpmesh

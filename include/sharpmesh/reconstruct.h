@@ -97,6 +97,10 @@ struct ReconstructTuning {
 struct ReconstructOptions {
   double delta = 3.5;  ///< d' = delta * avg (7.3.2; Fig. 7.10a)
   int spacing_k = 6;   ///< avg = mean distance to the 6 nearest neighbours (7.3.2)
+  /// avg in the input's unit when the caller knows it (0: measured on the
+  /// input). The tiles of one cloud take their whole cloud's, so that d'
+  /// and every length in spacings agree across a seam (sharpmesh/tiled.h).
+  double average_spacing = 0;
   FeatureMode feature_mode = FeatureMode::Extract;
   FeatureOptions features;               ///< used with FeatureMode::Extract
   std::vector<Polyline> given_features;  ///< used with FeatureMode::Given

@@ -30,6 +30,7 @@ class Recentering {
 
   /// A length measured in local coordinates, in world units.
   double length_to_world(double length) const { return length / scale_; }
+  double length_to_local(double length) const { return length * scale_; }
 
   void to_local(Vec3& p) const { p = scale_ * (p - offset_); }
   void to_world(Vec3& p) const { p = (1.0 / scale_) * p + offset_; }

@@ -79,6 +79,8 @@ std::vector<OptionField<O>> reconstruct_fields() {
       member_field("delta", "Mesh size d' = delta x average spacing; facet angle 25 deg, edges <= 2d', distance <= 0.6d' (7.3.2)",
                    "average spacings", &O::delta),
       member_field("spacing_k", "The average spacing is the mean distance to this many nearest neighbours (7.3.2)", "", &O::spacing_k),
+      member_field("average_spacing", "The average spacing when known (the tiles of one cloud share their whole cloud's; 0: measured)",
+                   "data units", &O::average_spacing),
       member_field("ball_radius", "Protecting-ball radius (7.3.2)", "fraction of d'", &O::ball_radius),
       member_field("ball_growth", "Grow each protecting ball to reach the implicit surface (beyond the thesis; off: every ball at ball_radius)",
                    "", &O::adapt_balls_to_gap),

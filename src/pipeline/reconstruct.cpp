@@ -74,6 +74,8 @@ void ReconstructOptions::check(std::size_t n) const {
   if (!(protection_budget >= 0) || !std::isfinite(protection_budget))
     throw InvalidArgument("protection budget must be a non-negative number of queries per polyline point (got " +
                           format_number(protection_budget) + ")");
+  if (!(average_spacing >= 0) || !std::isfinite(average_spacing))
+    throw InvalidArgument("average spacing must be 0 (measured) or positive (got " + format_number(average_spacing) + ")");
   if (!(delta > 0) || !std::isfinite(delta))
     throw InvalidArgument("delta must be positive (got " + format_number(delta) + ")");
   if (!(ball_radius > 0 && ball_radius <= 2))
@@ -173,6 +175,7 @@ LocalInput recentre(const PointSet& input, const ReconstructOptions& options) {
   check_point_set(local.points, 10, "reconstruction (after removing duplicated points)");
   options.check(local.points.size());
   local.frame.to_local(local.options.given_features);
+  local.options.average_spacing = local.frame.length_to_local(options.average_spacing);
   return local;
 }
 
@@ -201,7 +204,7 @@ PointSet prepare(PointSet input, const ReconstructOptions& options, const Progre
 
   {
     StageTimer timer(result.stages, "spacing");
-    result.average_spacing = average_spacing(input, options.spacing_k, progress);
+    result.average_spacing = options.average_spacing > 0 ? options.average_spacing : average_spacing(input, options.spacing_k, progress);
   }
   if (!(result.average_spacing > 0)) throw InvalidInput("reconstruction: the average spacing is zero (duplicated points?)");
   result.d_prime = options.delta * result.average_spacing;

@@ -144,6 +144,22 @@ PY
     expect_error 2 "needs --facets or --tolerance" "out.ply" $bin decimate nm.off -o out.ply
     expect_error 2 "tolerance" "out.ply" $bin decimate nm.off -o out.ply --tolerance 3
     expect_error 1 "nope.off" "out.ply" $bin decimate nope.off -o out.ply --facets 10 ;;
+  reconstruct-tiles)  # slabs welded into one mesh, as valid as one run's, each seam reported
+    $bin sample "$data/meshes/fandisk.off" -n 30000 --seed 4 -o s.ply -q || fail "sample failed"
+    $bin reconstruct s.ply -o m.ply --tiles 3 --sharp-edges e.txt --report r.json -q || fail "tiled reconstruct failed"
+    $bin eval m.ply --reference "$data/meshes/fandisk.off" --json e.json -q || fail "eval failed"
+    python3 - <<'PY' || fail "tiled reconstruction out of bounds"
+import json
+e = json.load(open("e.json"))["evaluation"]
+assert e["topology"]["closed"] and e["topology"]["manifold"] and not e["topology"]["self_intersecting"], e["topology"]
+assert e["topology"]["components"] == 1 and e["hausdorff"]["fraction_of_diagonal"] < 0.02, e
+t = json.load(open("r.json"))["tiling"]
+assert len(t["tiles"]) == 3 and len(t["seams"]) == 2 and all(s["stitched"] for s in t["seams"]), t
+assert sum(tile["points"] for tile in t["tiles"]) > 30000, t  # the margins overlap
+PY
+    [[ -s e.txt ]] || fail "no sharp edges written"
+    expect_error 2 "tiles" "out.ply" $bin reconstruct s.ply -o out.ply --tiles 0
+    expect_error 2 "facet budget" "out.ply" $bin reconstruct s.ply -o out.ply --tiles 2 --facets 1000 ;;
   features-given)
     $bin sample "$data/meshes/cube.off" -n 5000 --seed 2 -o s.ply -q || fail "sample failed"
     printf '2 -1 -1 -1 1 -1 -1\n' > one.txt

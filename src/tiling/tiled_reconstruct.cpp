@@ -1,0 +1,163 @@
+// reconstruct_tiled (sharpmesh/tiled.h).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "sharpmesh/errors.h"
+#include "sharpmesh/meshing.h"
+#include "sharpmesh/pointset.h"
+#include "sharpmesh/tiled.h"
+#include "sharpmesh/timing.h"
+#include "tiling/tiling.h"
+
+namespace sharpmesh {
+
+void TilingOptions::check() const {
+  if (tiles < 1 || tiles > 4096) throw InvalidArgument("tiles must be in [1, 4096] (got " + format_number(tiles) + ")");
+  if (!(margin >= 1) || !std::isfinite(margin)) throw InvalidArgument("tile margin must be at least 1 d' (got " + format_number(margin) + ")");
+  if (!(snap >= 0 && snap < 0.5)) throw InvalidArgument("seam snap distance must be in [0, 0.5) d' (got " + format_number(snap) + ")");
+  if (!(seam_tolerance > 0) || !std::isfinite(seam_tolerance))
+    throw InvalidArgument("seam tolerance must be positive (got " + format_number(seam_tolerance) + ")");
+}
+
+namespace detail {
+
+std::vector<double> slab_cuts(const std::vector<Vec3>& points, int axis, int slabs, double d_prime) {
+  std::vector<double> along(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) along[i] = points[i][axis];
+  std::sort(along.begin(), along.end());
+  std::vector<double> cuts;
+  const double low = along.front(), high = along.back();
+  const double slab = (high - low) / slabs;
+  auto count_near = [&](double x) {
+    return std::upper_bound(along.begin(), along.end(), x + d_prime) - std::lower_bound(along.begin(), along.end(), x - d_prime);
+  };
+  for (int k = 1; k < slabs; ++k) {
+    const double quantile = along[static_cast<std::size_t>(static_cast<double>(k) / slabs * static_cast<double>(along.size() - 1))];
+    // Candidates a quarter of d' apart within a quarter of a slab: the one
+    // with the fewest points near it (the first of equals).
+    double best = quantile;
+    auto best_count = count_near(quantile);
+    const double reach = 0.25 * slab;
+    const double step = std::max(0.25 * d_prime, reach / 200);
+    for (double x = quantile - reach; x <= quantile + reach; x += step) {
+      if (x <= low + d_prime || x >= high - d_prime) continue;
+      const auto c = count_near(x);
+      if (c < best_count) best = x, best_count = c;
+    }
+    if (cuts.empty() || best > cuts.back() + 2 * d_prime) cuts.push_back(best);
+  }
+  return cuts;
+}
+
+}  // namespace detail
+
+TiledResult reconstruct_tiled(const PointSet& input, const ReconstructOptions& options, const TilingOptions& tiling,
+                              const Progress& progress) {
+  tiling.check();
+  options.check(input.size());
+  if (options.compaction.facets > 0 || options.compaction.tolerance > 0)
+    throw InvalidArgument("a facet budget or a tolerance is not available with tiles yet: run `decimate` on the tiled mesh");
+  check_point_set(input, 10, "tiled reconstruction");
+  TiledResult out;
+  ReconstructOptions tile_options = options;
+  {
+    std::vector<StageTiming> stages;
+    StageTimer timer(stages, "spacing");
+    tile_options.average_spacing = options.average_spacing > 0 ? options.average_spacing : average_spacing(input, options.spacing_k, progress);
+  }
+  // Normals of the whole cloud, oriented once: a slab's own orientation
+  // sees a cloud open at its cuts, where the occupancy and sheet-parity
+  // anchors (and the winding repair) take the inside for the outside, and
+  // Poisson then puts a second sheet inside the part. The slabs use them as
+  // given.
+  PointSet oriented;
+  if (!input.has_normals() || options.recompute_normals) {
+    NormalsResult normals = reconstruct_normals(input, tile_options, progress);
+    for (StageTiming s : normals.stages) {
+      s.name = "whole cloud: " + s.name;
+      out.merged.stages.push_back(s);
+    }
+    out.merged.normals = normals.normals;
+    oriented = std::move(normals.points);
+  }
+  const PointSet& cloud = oriented.empty() ? input : oriented;
+  tile_options.recompute_normals = false;
+  tile_options.check_input_normals = false;
+  const double d_prime = options.delta * tile_options.average_spacing;
+  const BoundingBox box = bounding_box(input.points);
+  for (int a = 1; a < 3; ++a)
+    if (box.max[a] - box.min[a] > box.max[out.axis] - box.min[out.axis]) out.axis = a;
+  const int axis = out.axis;
+  const std::vector<double> cuts = detail::slab_cuts(cloud.points, axis, tiling.tiles, d_prime);
+  const double margin = tiling.margin * d_prime;
+  const double infinity = std::numeric_limits<double>::infinity();
+  std::vector<SurfaceMesh> parts;
+  for (std::size_t k = 0; k <= cuts.size(); ++k) {
+    TileResult tile;
+    tile.low = k == 0 ? -infinity : cuts[k - 1];
+    tile.high = k == cuts.size() ? infinity : cuts[k];
+    const auto start = std::chrono::steady_clock::now();
+    PointSet points;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const double x = cloud.points[i][axis];
+      if (x < tile.low - margin || x > tile.high + margin) continue;
+      points.points.push_back(cloud.points[i]);
+      if (cloud.has_normals()) points.normals.push_back(cloud.normals[i]);
+      if (cloud.has_colors()) points.colors.push_back(cloud.colors[i]);
+    }
+    tile.points = points.size();
+    const std::string stage = "tile " + std::to_string(k + 1) + " of " + std::to_string(cuts.size() + 1);
+    Progress tile_progress;
+    if (progress)
+      tile_progress = [&](const std::string& name, double fraction) { return progress(stage + ": " + name, fraction); };
+    ReconstructResult result = reconstruct(points, tile_options, tile_progress);
+    SurfaceMesh part = detail::clip_to_slab(result.mesh, axis, tile.low, tile.high, tiling.snap * d_prime);
+    tile.facets = part.faces.size();
+    tile.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    tile.peak_rss_bytes = peak_rss_bytes();
+    for (StageTiming s : result.stages) {
+      s.name = stage + ": " + s.name;
+      out.merged.stages.push_back(s);
+    }
+    // The mesh edges along the features, each segment in the slab of its
+    // midpoint (one slab keeps a segment across a cut).
+    for (const Polyline& line : result.meshing.feature_edges) {
+      Polyline piece;
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        const double middle = 0.5 * (line[i][axis] + line[i + 1][axis]);
+        if (middle >= tile.low && middle < tile.high) {
+          if (piece.empty()) piece.push_back(line[i]);
+          piece.push_back(line[i + 1]);
+        } else if (!piece.empty()) {
+          out.merged.meshing.feature_edges.push_back(std::move(piece));
+          piece.clear();
+        }
+      }
+      if (!piece.empty()) out.merged.meshing.feature_edges.push_back(std::move(piece));
+    }
+    out.merged.features.graph.polylines.insert(out.merged.features.graph.polylines.end(), result.features.graph.polylines.begin(),
+                                               result.features.graph.polylines.end());
+    out.merged.warnings.insert(out.merged.warnings.end(), result.warnings.begin(), result.warnings.end());
+    out.tiles.push_back(tile);
+    parts.push_back(std::move(part));
+  }
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    const detail::SeamStitch stitch = detail::stitch_seam(parts[k], parts[k + 1], axis, cuts[k], tiling.seam_tolerance * d_prime);
+    out.seams.push_back({cuts[k], stitch.stitched, stitch.failure, stitch.chains, stitch.inserted, stitch.max_move / d_prime});
+    if (!stitch.stitched)
+      out.merged.warnings.push_back({"seam_not_welded", "the seam at " + format_number(cuts[k]) + " along " + "xyz"[axis] +
+                                                            " was not welded (" + stitch.failure + "): the mesh is open there"});
+  }
+  out.merged.mesh = detail::weld_parts(parts, axis, cuts);
+  out.merged.average_spacing = tile_options.average_spacing;
+  out.merged.d_prime = d_prime;
+  out.merged.diagonal = box.diagonal();
+  out.merged.input_points = input.size();
+  out.merged.used_points = input.size();
+  out.merged.boundary_edges = count_boundary_edges(out.merged.mesh);
+  return out;
+}
+
+}  // namespace sharpmesh
