@@ -80,9 +80,8 @@ Command add_reconstruct(CLI::App& app) {
       if (!timed_out) throw;
       throw Error(o->input + ": the reconstruction ran past --time-limit " + format_number(limit) + " s; nothing written");
     }
-    // A tiled mesh is checked whole here: each tile repaired its own.
-    const bool crossing = options.repair_self_intersections && o->tiling.tiles <= 1 ? result.repairs.intersection_repair.remaining_pairs > 0
-                                                                                   : !self_intersecting_faces(result.mesh).empty();
+    const bool crossing = options.repair_self_intersections ? result.repairs.intersection_repair.remaining_pairs > 0
+                                                             : !self_intersecting_faces(result.mesh).empty();
     if (crossing && !o->allow_invalid)
       throw Error(o->input + ": the mesh has facets that cross others" +
                   (options.repair_self_intersections ? " after " + std::to_string(result.repairs.intersection_repair.rounds) + " repair rounds" : std::string()) +
@@ -149,7 +148,7 @@ Command add_reconstruct(CLI::App& app) {
       for (const SeamResult& seam : tiled.seams)
         seams.push_back({{"position", seam.position}, {"stitched", seam.stitched}, {"failure", seam.failure}, {"chains", seam.chains},
                          {"inserted_vertices", seam.inserted_vertices}, {"max_move_d_prime", seam.max_move}});
-      report["tiling"] = {{"axis", tiled.axis}, {"tiles", tiles}, {"seams", seams}};
+      report["tiling"] = {{"axis", tiled.axis}, {"tiles", tiles}, {"seams", seams}, {"merged_seams", tiled.merged_seams}};
     }
     if (!common->quiet)
       for (const Warning& w : result.warnings) std::fprintf(stderr, "reconstruct: warning: %s\n", w.message.c_str());

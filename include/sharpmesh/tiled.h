@@ -21,6 +21,10 @@ struct TilingOptions {
   /// Vertices closer than this to a cut move onto it before the clip, so
   /// that no sliver thinner is made [d'].
   double snap = 0.02;
+  /// A seam vertex of one side this close to one of the other side's
+  /// becomes it, where no facet turns over; the others are inserted into the
+  /// other side's edges (0: every vertex of both sides kept) [d'].
+  double seam_merge = 0.3;
   /// The seam's two sides may lie this far apart before they are refused [d'].
   double seam_tolerance = 0.5;
   void check() const;
@@ -47,13 +51,16 @@ struct TiledResult {
   ReconstructResult merged;       ///< the welded mesh; counts and stages summed over the tiles
   int axis = 0;                   ///< 0 x, 1 y, 2 z
   std::vector<TileResult> tiles;
-  std::vector<SeamResult> seams;
+  std::vector<SeamResult> seams;  ///< the cuts kept, all welded
+  /// Cuts removed because their two sides could not be welded; their slabs
+  /// were meshed again as one (a warning names each).
+  std::size_t merged_seams = 0;
 };
 
 /// Meshes `input` in `tiling.tiles` slabs with the options of reconstruct();
 /// the average spacing (hence d') is the whole cloud's. Throws as
-/// reconstruct() does; a seam that cannot be stitched is reported (its
-/// SeamResult) and leaves the mesh open there.
+/// reconstruct() does. A seam that cannot be welded is removed and its two
+/// slabs are meshed again as one, so the mesh is never open at a cut.
 TiledResult reconstruct_tiled(const PointSet& input, const ReconstructOptions& options, const TilingOptions& tiling,
                               const Progress& progress = {});
 

@@ -16,6 +16,8 @@ const std::vector<OptionField<TilingOptions>>& tiling_option_fields() {
                    "", &O::tiles),
       member_field("tile_margin", "Each slab also meshes its neighbours' points this far beyond its cuts", "d'", &O::margin),
       member_field("seam_snap", "Mesh vertices this close to a cut move onto it before the clip", "d'", &O::snap),
+      member_field("seam_merge", "A seam vertex this close to one of the other side's becomes it (0: both sides' vertices kept)", "d'",
+                   &O::seam_merge),
       member_field("seam_tolerance", "The two sides of a seam may lie this far apart and still be welded", "d'", &O::seam_tolerance),
   };
   return fields;

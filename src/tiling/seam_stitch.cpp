@@ -70,9 +70,127 @@ std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> facets_by_half_ed
   return facet_of;
 }
 
+/// What one chain's stitch changes: above's vertices moved onto below's
+/// chain, and each side's boundary edges split at the other side's vertices.
+struct SeamPlan {
+  std::vector<std::pair<std::uint32_t, Vec3>> moves;
+  std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::vector<Vec3>>> below_splits, above_splits;
+};
+
+/// The moves and splits that make `b` (above's chain) and `a` (below's) the
+/// same vertices: above's vertex within `merge` of one of below's, unclaimed
+/// and with no facet of above turned over by the move, becomes it; the
+/// others move to their nearest point of `a`. "" or why the chains differ.
+std::string plan_chain(const SurfaceMesh& below, const SurfaceMesh& above, const SeamChain& a, const SeamChain& b, int axis, double plane,
+                     double tolerance, double merge, SeamPlan& plan, SeamStitch& result) {
+  const double m = static_cast<double>(a.closed ? a.vertices.size() : a.vertices.size() - 1);
+  std::vector<OnChain> at(b.vertices.size());
+  for (std::size_t j = 0; j < b.vertices.size(); ++j) {
+    at[j] = nearest_on_chain(below, a, above.vertices[b.vertices[j]]);
+    // A vertex of above that lies on one of below's: the same vertex.
+    const std::size_t s = at[j].segment;
+    const double length = norm(below.vertices[a.vertices[(s + 1) % a.vertices.size()]] - below.vertices[a.vertices[s]]);
+    if (at[j].t * length <= 1e-9 * tolerance) at[j].t = 0;
+    if ((1 - at[j].t) * length <= 1e-9 * tolerance) at[j] = {(s + 1) % a.vertices.size(), 0.0, at[j].distance};
+    if (!a.closed && at[j].segment == a.vertices.size() - 1) at[j] = {a.vertices.size() - 2, 1.0, at[j].distance};
+  }
+  auto place = [&](const OnChain& c) {
+    const Vec3& p = below.vertices[a.vertices[c.segment]];
+    const Vec3& q = below.vertices[a.vertices[(c.segment + 1) % a.vertices.size()]];
+    Vec3 x = c.t == 0 ? p : c.t == 1 ? q : p + c.t * (q - p);
+    x[axis] = plane;
+    return x;
+  };
+  if (merge > 0) {
+    // Above's vertex near one of below's becomes it (one each), unless that
+    // turns a facet of above over: fewer and fatter facets along the seam.
+    std::vector<bool> claimed(a.vertices.size(), false);
+    for (const OnChain& c : at)
+      if (c.t == 0) claimed[c.segment] = true;
+    std::vector<OnChain> merged = at;
+    std::unordered_map<std::uint32_t, std::size_t> on_chain;
+    for (std::size_t j = 0; j < b.vertices.size(); ++j) on_chain[b.vertices[j]] = j;
+    for (std::size_t j = 0; j < b.vertices.size(); ++j) {
+      if (at[j].t == 0 || at[j].t == 1) continue;
+      const std::size_t k = at[j].t < 0.5 ? at[j].segment : (at[j].segment + 1) % a.vertices.size();
+      const double d = norm(above.vertices[b.vertices[j]] - below.vertices[a.vertices[k]]);
+      if (d > merge || claimed[k]) continue;
+      claimed[k] = true;
+      merged[j] = !a.closed && k == a.vertices.size() - 1 ? OnChain{k - 1, 1.0, d} : OnChain{k, 0.0, d};
+    }
+    auto position = [&](std::uint32_t v, const std::vector<OnChain>& places) {
+      const auto it = on_chain.find(v);
+      return it == on_chain.end() ? above.vertices[v] : place(places[it->second]);
+    };
+    for (int pass = 0; pass < 3; ++pass) {  // a revert changes the facets around it too
+      bool reverted = false;
+      for (const Triangle& f : above.faces) {
+        bool moved = false;
+        for (std::uint32_t v : f) moved = moved || (on_chain.count(v) && merged[on_chain[v]].position() != at[on_chain[v]].position());
+        if (!moved) continue;
+        const Vec3 before = cross(position(f[1], at) - position(f[0], at), position(f[2], at) - position(f[0], at));
+        const Vec3 after = cross(position(f[1], merged) - position(f[0], merged), position(f[2], merged) - position(f[0], merged));
+        if (dot(before, after) > 0) continue;
+        for (std::uint32_t v : f)
+          if (on_chain.count(v)) merged[on_chain[v]] = at[on_chain[v]];
+        reverted = true;
+      }
+      if (!reverted) break;
+    }
+    at = std::move(merged);
+  }
+  // Above's chain runs against below's: its places must fall strictly,
+  // once round a closed chain.
+  double turned = 0;
+  const std::size_t steps = b.closed ? b.vertices.size() : b.vertices.size() - 1;
+  for (std::size_t j = 0; j < steps; ++j) {
+    double fall = at[j].position() - at[(j + 1) % b.vertices.size()].position();
+    if (b.closed && fall <= 0) fall += m;
+    if (!(fall > 0)) {
+      return "the chains on the two sides of the cut run in different orders";
+    }
+    turned += fall;
+  }
+  if (b.closed && std::abs(turned - m) > 1e-9 * m) {
+    return "a chain above the cut winds round the chain below more than once";
+  }
+  for (const OnChain& c : at) result.max_move = std::max(result.max_move, c.distance);
+  // Below's edges take above's vertices that fall inside them.
+  std::map<std::size_t, std::vector<std::pair<double, Vec3>>> inside;
+  for (std::size_t j = 0; j < b.vertices.size(); ++j) {
+    const Vec3 x = place(at[j]);
+    plan.moves.push_back({b.vertices[j], x});
+    if (at[j].t > 0 && at[j].t < 1) inside[at[j].segment].push_back({at[j].t, x});
+  }
+  for (auto& [segment, points] : inside) {
+    std::sort(points.begin(), points.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+    std::vector<Vec3> xs;
+    for (const auto& p : points) xs.push_back(p.second);
+    plan.below_splits.push_back({{a.vertices[segment], a.vertices[(segment + 1) % a.vertices.size()]}, xs});
+  }
+  // Above's edges take below's vertices between their two ends' places:
+  // below's vertex k sits at place k, and above's edge runs down from the
+  // place of its start to that of its end (round the chain when closed).
+  for (std::size_t j = 0; j < steps; ++j) {
+    const double from = at[j].position(), to = at[(j + 1) % b.vertices.size()].position();
+    double span = from - to;
+    if (b.closed && span <= 0) span += m;
+    std::vector<Vec3> xs;
+    for (double k = std::ceil(from) - 1; from - k < span; k -= 1) {
+      const double wrapped = k < 0 ? k + m : k;
+      const std::size_t index = static_cast<std::size_t>(std::llround(wrapped)) % a.vertices.size();
+      Vec3 x = below.vertices[a.vertices[index]];
+      x[axis] = plane;
+      xs.push_back(x);
+    }
+    plan.above_splits.push_back({{b.vertices[j], b.vertices[(j + 1) % b.vertices.size()]}, xs});
+  }
+  return "";
+}
+
 }  // namespace
 
-SeamStitch stitch_seam(SurfaceMesh& below, SurfaceMesh& above, int axis, double plane, double tolerance) {
+SeamStitch stitch_seam(SurfaceMesh& below, SurfaceMesh& above, int axis, double plane, double tolerance, double merge) {
   SeamStitch result;
   const std::vector<SeamChain> lower = chains_on_plane(below, axis, plane);
   const std::vector<SeamChain> upper = chains_on_plane(above, axis, plane);
@@ -99,82 +217,19 @@ SeamStitch stitch_seam(SurfaceMesh& below, SurfaceMesh& above, int axis, double 
     partner[i] = best_j;
   }
   // Plan every chain first, change the meshes only when all of them fit.
-  struct Plan {
-    std::vector<std::pair<std::uint32_t, Vec3>> moves;                       // above's vertex -> its place on below's chain
-    std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::vector<Vec3>>> below_splits, above_splits;
-  };
-  std::vector<Plan> plans;
+  std::vector<SeamPlan> plans(lower.size());
   for (std::size_t i = 0; i < lower.size(); ++i) {
     const SeamChain& a = lower[i];
     const SeamChain& b = upper[partner[i]];
-    const double m = static_cast<double>(a.closed ? a.vertices.size() : a.vertices.size() - 1);
-    std::vector<OnChain> at(b.vertices.size());
-    for (std::size_t j = 0; j < b.vertices.size(); ++j) {
-      at[j] = nearest_on_chain(below, a, above.vertices[b.vertices[j]]);
-      // A vertex of above that lies on one of below's: the same vertex.
-      const std::size_t s = at[j].segment;
-      const double length = norm(below.vertices[a.vertices[(s + 1) % a.vertices.size()]] - below.vertices[a.vertices[s]]);
-      if (at[j].t * length <= 1e-9 * tolerance) at[j].t = 0;
-      if ((1 - at[j].t) * length <= 1e-9 * tolerance) at[j] = {(s + 1) % a.vertices.size(), 0.0, at[j].distance};
-      if (!a.closed && at[j].segment == a.vertices.size() - 1) at[j] = {a.vertices.size() - 2, 1.0, at[j].distance};
-      result.max_move = std::max(result.max_move, at[j].distance);
+    std::string failure = plan_chain(below, above, a, b, axis, plane, tolerance, merge, plans[i], result);
+    if (!failure.empty() && merge > 0) {  // merging changed the order: every vertex kept
+      plans[i] = SeamPlan{};
+      failure = plan_chain(below, above, a, b, axis, plane, tolerance, 0, plans[i], result);
     }
-    // Above's chain runs against below's: its places must fall strictly,
-    // once round a closed chain.
-    double turned = 0;
-    const std::size_t steps = b.closed ? b.vertices.size() : b.vertices.size() - 1;
-    for (std::size_t j = 0; j < steps; ++j) {
-      double fall = at[j].position() - at[(j + 1) % b.vertices.size()].position();
-      if (b.closed && fall <= 0) fall += m;
-      if (!(fall > 0)) {
-        result.failure = "the chains on the two sides of the cut run in different orders";
-        return result;
-      }
-      turned += fall;
-    }
-    if (b.closed && std::abs(turned - m) > 1e-9 * m) {
-      result.failure = "a chain above the cut winds round the chain below more than once";
+    if (!failure.empty()) {
+      result.failure = failure;
       return result;
     }
-    Plan plan;
-    auto place = [&](const OnChain& c) {
-      const Vec3& p = below.vertices[a.vertices[c.segment]];
-      const Vec3& q = below.vertices[a.vertices[(c.segment + 1) % a.vertices.size()]];
-      Vec3 x = c.t == 0 ? p : c.t == 1 ? q : p + c.t * (q - p);
-      x[axis] = plane;
-      return x;
-    };
-    // Below's edges take above's vertices that fall inside them.
-    std::map<std::size_t, std::vector<std::pair<double, Vec3>>> inside;
-    for (std::size_t j = 0; j < b.vertices.size(); ++j) {
-      const Vec3 x = place(at[j]);
-      plan.moves.push_back({b.vertices[j], x});
-      if (at[j].t > 0 && at[j].t < 1) inside[at[j].segment].push_back({at[j].t, x});
-    }
-    for (auto& [segment, points] : inside) {
-      std::sort(points.begin(), points.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
-      std::vector<Vec3> xs;
-      for (const auto& p : points) xs.push_back(p.second);
-      plan.below_splits.push_back({{a.vertices[segment], a.vertices[(segment + 1) % a.vertices.size()]}, xs});
-    }
-    // Above's edges take below's vertices between their two ends' places:
-    // below's vertex k sits at place k, and above's edge runs down from the
-    // place of its start to that of its end (round the chain when closed).
-    for (std::size_t j = 0; j < steps; ++j) {
-      const double from = at[j].position(), to = at[(j + 1) % b.vertices.size()].position();
-      double span = from - to;
-      if (b.closed && span <= 0) span += m;
-      std::vector<Vec3> xs;
-      for (double k = std::ceil(from) - 1; from - k < span; k -= 1) {
-        const double wrapped = k < 0 ? k + m : k;
-        const std::size_t index = static_cast<std::size_t>(std::llround(wrapped)) % a.vertices.size();
-        Vec3 x = below.vertices[a.vertices[index]];
-        x[axis] = plane;
-        xs.push_back(x);
-      }
-      plan.above_splits.push_back({{b.vertices[j], b.vertices[(j + 1) % b.vertices.size()]}, xs});
-    }
-    plans.push_back(std::move(plan));
   }
   // Applied to copies: a facet missing on either side leaves both unchanged.
   SurfaceMesh new_below = below, new_above = above;
@@ -193,13 +248,29 @@ SeamStitch stitch_seam(SurfaceMesh& below, SurfaceMesh& above, int axis, double 
     }
     return true;
   };
-  for (const Plan& plan : plans) {
+  for (const SeamPlan& plan : plans) {
     if (!apply(new_below, below_facets, plan.below_splits) || !apply(new_above, above_facets, plan.above_splits)) {
       result.failure = "a facet has two boundary edges on the cut";
       result.inserted = 0;
       return result;
     }
     for (const auto& [v, x] : plan.moves) new_above.vertices[v] = x;
+  }
+  // A facet with two corners at one place would weld degenerate; merging
+  // is what can make one (a corner merged where the other side's vertex was
+  // also inserted): the seam is stitched again with every vertex kept.
+  auto collapses = [](const SurfaceMesh& mesh) {
+    for (const Triangle& t : mesh.faces)
+      if (mesh.vertices[t[0]] == mesh.vertices[t[1]] || mesh.vertices[t[1]] == mesh.vertices[t[2]] ||
+          mesh.vertices[t[0]] == mesh.vertices[t[2]])
+        return true;
+    return false;
+  };
+  if (collapses(new_below) || collapses(new_above)) {
+    if (merge > 0) return stitch_seam(below, above, axis, plane, tolerance, 0);
+    result.failure = "stitching would make a facet with two corners at one place";
+    result.inserted = 0;
+    return result;
   }
   below = std::move(new_below);
   above = std::move(new_above);

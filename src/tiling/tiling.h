@@ -41,11 +41,12 @@ struct SeamStitch {
 };
 /// Makes the boundaries of `below` (the slab under the plane) and `above`
 /// on the plane the same chains of the same vertices: each of above's seam
-/// vertices moves to the nearest point of below's matching chain (within
-/// `tolerance`), and each side's boundary edges are split at the other
-/// side's vertices. Unchanged, with the reason, when the chains do not
-/// match one to one in order.
-SeamStitch stitch_seam(SurfaceMesh& below, SurfaceMesh& above, int axis, double plane, double tolerance);
+/// vertices becomes below's nearest chain vertex when within `merge` (one
+/// each, no facet turned over), or else moves to the nearest point of
+/// below's matching chain (within `tolerance`), and each side's boundary
+/// edges are split at the other side's remaining vertices. Unchanged, with
+/// the reason, when the chains do not match one to one in order.
+SeamStitch stitch_seam(SurfaceMesh& below, SurfaceMesh& above, int axis, double plane, double tolerance, double merge);
 
 /// One mesh of the parts, the vertices that coincide exactly on the cut
 /// planes merged.

@@ -121,6 +121,7 @@ def main():
     parser.add_argument("--deltas", default="5")
     parser.add_argument("--seed", type=int, default=1, help="sampling seed")
     parser.add_argument("--pif", action="store_true", help="also run the PIF baseline (--no-features)")
+    parser.add_argument("--extra", default="", help="more reconstruct flags for every case, e.g. '--tiles 3'")
     parser.add_argument("--json", help="write every case's result here")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
@@ -147,7 +148,7 @@ def main():
                     case = {"model": model, "family": meta["family"], "kind": meta["kind"], "variation": variation,
                             "points": int(points), "delta": float(delta), "thin": meta.get("thin"),
                             "spacing_50k": meta.get("spacing_50k"), "components": meta.get("components")}
-                    case["ours"] = reconstruct(args.binary, cloud, reference, tag + "-ours", delta, [])
+                    case["ours"] = reconstruct(args.binary, cloud, reference, tag + "-ours", delta, args.extra.split())
                     if args.pif:
                         case["pif"] = reconstruct(args.binary, cloud, reference, tag + "-pif", delta, ["--no-features"])
                     case["failed"] = invariant(meta, variation, case["ours"])

@@ -3,6 +3,7 @@
 // vertices, and the welded mesh as valid as one run's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -62,25 +63,33 @@ TEST(Tiling, SeamsOfDifferentTessellationsWeldIntoOneClosedValidMesh) {
   std::vector<SurfaceMesh> parts;
   for (std::size_t k = 0; k <= cuts.size(); ++k)
     parts.push_back(detail::clip_to_slab(k % 2 == 0 ? a : b, 2, k == 0 ? -kInf : cuts[k - 1], k == cuts.size() ? kInf : cuts[k], 1e-3));
-  for (std::size_t k = 0; k < cuts.size(); ++k) {
-    const detail::SeamStitch seam = detail::stitch_seam(parts[k], parts[k + 1], 2, cuts[k], 0.05);
-    ASSERT_TRUE(seam.stitched) << seam.failure;
-    EXPECT_EQ(seam.chains, 1u);
-    EXPECT_GT(seam.inserted, 0u);
-    EXPECT_LT(seam.max_move, 0.05);
+  // Every vertex of both sides kept, and nearby ones merged: both weld.
+  std::size_t kept_vertices = 0;
+  for (double merge : {0.0, 0.04}) {
+    SCOPED_TRACE("merge " + std::to_string(merge));
+    std::vector<SurfaceMesh> stitched = parts;
+    for (std::size_t k = 0; k < cuts.size(); ++k) {
+      const detail::SeamStitch seam = detail::stitch_seam(stitched[k], stitched[k + 1], 2, cuts[k], 0.05, merge);
+      ASSERT_TRUE(seam.stitched) << seam.failure;
+      EXPECT_EQ(seam.chains, 1u);
+      EXPECT_GT(seam.inserted, 0u);
+      EXPECT_LT(seam.max_move, 0.05);
+    }
+    const SurfaceMesh welded = detail::weld_parts(stitched, 2, cuts);
+    const TopologyReport t = check_topology(welded);
+    EXPECT_TRUE(t.closed());
+    EXPECT_TRUE(t.manifold());
+    EXPECT_TRUE(t.orientable);
+    EXPECT_FALSE(t.self_intersecting);
+    EXPECT_EQ(t.components, 1u);
+    if (merge == 0) kept_vertices = welded.vertices.size();
+    else EXPECT_LT(welded.vertices.size(), kept_vertices);
   }
-  const SurfaceMesh welded = detail::weld_parts(parts, 2, cuts);
-  const TopologyReport t = check_topology(welded);
-  EXPECT_TRUE(t.closed());
-  EXPECT_TRUE(t.manifold());
-  EXPECT_TRUE(t.orientable);
-  EXPECT_FALSE(t.self_intersecting);
-  EXPECT_EQ(t.components, 1u);
   // Two spheres at the cut do not match: refused, both left as they were.
   SurfaceMesh below = detail::clip_to_slab(a, 2, -kInf, 0.1, 1e-3);
   SurfaceMesh above = detail::clip_to_slab(moved(b, {0.5, 0, 0}), 2, 0.1, kInf, 1e-3);
   const SurfaceMesh below_before = below, above_before = above;
-  const detail::SeamStitch refused = detail::stitch_seam(below, above, 2, 0.1, 0.05);
+  const detail::SeamStitch refused = detail::stitch_seam(below, above, 2, 0.1, 0.05, 0.04);
   EXPECT_FALSE(refused.stitched);
   EXPECT_FALSE(refused.failure.empty());
   EXPECT_EQ(below.faces, below_before.faces);
@@ -117,6 +126,10 @@ TEST(Tiling, SlabsWeldIntoAClosedValidMeshAsAccurateAsOneRun) {
   EXPECT_TRUE(t.orientable);
   EXPECT_FALSE(t.self_intersecting);
   EXPECT_EQ(t.components, 1u);
+  // No vertex twice: the seams' two sides became one set of vertices.
+  std::vector<Vec3> sorted = tiled.merged.mesh.vertices;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
   const ReconstructResult one = reconstruct(points, options);
   const double tiled_error = compare_meshes(tiled.merged.mesh, part).hausdorff;
   const double one_error = compare_meshes(one.mesh, part).hausdorff;
@@ -137,7 +150,8 @@ TEST(Tiling, SlabsWeldIntoAClosedValidMeshAsAccurateAsOneRun) {
 TEST(Tiling, OptionsAreChecked) {
   const PointSet points = test::sample_with_normals(test::cube_mesh(), 2000, 1);
   for (auto change : {+[](TilingOptions& t) { t.tiles = 0; }, +[](TilingOptions& t) { t.margin = 0.5; },
-                      +[](TilingOptions& t) { t.snap = 0.7; }, +[](TilingOptions& t) { t.seam_tolerance = 0; }}) {
+                      +[](TilingOptions& t) { t.snap = 0.7; }, +[](TilingOptions& t) { t.seam_tolerance = 0; },
+                      +[](TilingOptions& t) { t.seam_merge = 1.5; }}) {
     TilingOptions tiling;
     change(tiling);
     EXPECT_THROW(reconstruct_tiled(points, {}, tiling), InvalidArgument);
@@ -145,4 +159,28 @@ TEST(Tiling, OptionsAreChecked) {
   ReconstructOptions budget;
   budget.compaction.facets = 500;
   EXPECT_THROW(reconstruct_tiled(points, budget, {}), InvalidArgument);
+}
+
+TEST(Tiling, ACutWhoseSidesCannotBeWeldedIsDroppedAndTheMeshStaysClosed) {
+  // A tolerance no two meshes of a curved part meet (on a planar face the
+  // two sides' chains lie on one line): every seam is refused, each refused
+  // cut is dropped and its slabs meshed as one, down to the whole cloud.
+  PointSet points = test::sample_with_normals(test::sphere_mesh(5), 12000, 3);
+  points.normals.clear();
+  ReconstructOptions options;
+  options.delta = 6;
+  TilingOptions tiling;
+  tiling.tiles = 3;
+  tiling.seam_tolerance = 1e-12;
+  const TiledResult tiled = reconstruct_tiled(points, options, tiling);
+  EXPECT_EQ(tiled.merged_seams, 2u);
+  EXPECT_TRUE(tiled.seams.empty());
+  ASSERT_EQ(tiled.tiles.size(), 1u);
+  std::size_t warnings = 0;
+  for (const Warning& w : tiled.merged.warnings) warnings += w.code == "seam_merged";
+  EXPECT_EQ(warnings, 2u);
+  const TopologyReport t = check_topology(tiled.merged.mesh);
+  EXPECT_TRUE(t.closed());
+  EXPECT_TRUE(t.manifold());
+  EXPECT_FALSE(t.self_intersecting);
 }
