@@ -35,10 +35,20 @@ OnChain nearest_on_chain(const SurfaceMesh& mesh, const SeamChain& chain, const 
   return best;
 }
 
+/// The farthest vertex of `from` from the chain `to`; on an open `to`, over
+/// the vertices facing it only (not those beyond its ends, whose nearest
+/// point is an end), infinite when fewer than half of them face it.
 double chain_distance(const SurfaceMesh& from_mesh, const SeamChain& from, const SurfaceMesh& to_mesh, const SeamChain& to) {
   double worst = 0;
-  for (std::uint32_t v : from.vertices) worst = std::max(worst, nearest_on_chain(to_mesh, to, from_mesh.vertices[v]).distance);
-  return worst;
+  std::size_t facing = 0;
+  const std::size_t last_segment = to.vertices.size() - 2;
+  for (std::uint32_t v : from.vertices) {
+    const OnChain c = nearest_on_chain(to_mesh, to, from_mesh.vertices[v]);
+    if (!to.closed && ((c.segment == 0 && c.t == 0) || (c.segment == last_segment && c.t == 1))) continue;
+    worst = std::max(worst, c.distance);
+    ++facing;
+  }
+  return 2 * facing >= from.vertices.size() ? worst : std::numeric_limits<double>::infinity();
 }
 
 /// Splits, in `mesh`, the facet with half-edge (a, b) at `points` (in order
@@ -139,11 +149,24 @@ std::string plan_chain(const SurfaceMesh& below, const SurfaceMesh& above, const
     }
     at = std::move(merged);
   }
+  // Open chains (a surface with a boundary crossing the cut) end where each
+  // side's data ends, not at the same place: above's vertices beyond the
+  // end of below's chain (their nearest point is its end) stay as they are,
+  // but for the one nearest the overlap, and the two sides are welded over
+  // the overlap only; past it both remain the mesh's boundary.
+  std::size_t first = 0, last = b.vertices.size() - 1;
+  if (!b.closed) {
+    for (std::size_t j = 0; j < b.vertices.size(); ++j)
+      if (at[j].position() >= m) first = j;
+    for (std::size_t j = b.vertices.size(); j-- > 0;)
+      if (at[j].position() <= 0) last = j;
+    if (first >= last) return "the open chains on the two sides of the cut do not overlap";
+  }
   // Above's chain runs against below's: its places must fall strictly,
   // once round a closed chain.
   double turned = 0;
-  const std::size_t steps = b.closed ? b.vertices.size() : b.vertices.size() - 1;
-  for (std::size_t j = 0; j < steps; ++j) {
+  const std::size_t steps = b.closed ? b.vertices.size() : last;
+  for (std::size_t j = first; j < steps; ++j) {
     double fall = at[j].position() - at[(j + 1) % b.vertices.size()].position();
     if (b.closed && fall <= 0) fall += m;
     if (!(fall > 0)) {
@@ -154,10 +177,10 @@ std::string plan_chain(const SurfaceMesh& below, const SurfaceMesh& above, const
   if (b.closed && std::abs(turned - m) > 1e-9 * m) {
     return "a chain above the cut winds round the chain below more than once";
   }
-  for (const OnChain& c : at) result.max_move = std::max(result.max_move, c.distance);
+  for (std::size_t j = first; j <= last; ++j) result.max_move = std::max(result.max_move, at[j].distance);
   // Below's edges take above's vertices that fall inside them.
   std::map<std::size_t, std::vector<std::pair<double, Vec3>>> inside;
-  for (std::size_t j = 0; j < b.vertices.size(); ++j) {
+  for (std::size_t j = first; j <= last; ++j) {
     const Vec3 x = place(at[j]);
     plan.moves.push_back({b.vertices[j], x});
     if (at[j].t > 0 && at[j].t < 1) inside[at[j].segment].push_back({at[j].t, x});
@@ -171,7 +194,7 @@ std::string plan_chain(const SurfaceMesh& below, const SurfaceMesh& above, const
   // Above's edges take below's vertices between their two ends' places:
   // below's vertex k sits at place k, and above's edge runs down from the
   // place of its start to that of its end (round the chain when closed).
-  for (std::size_t j = 0; j < steps; ++j) {
+  for (std::size_t j = first; j < steps; ++j) {
     const double from = at[j].position(), to = at[(j + 1) % b.vertices.size()].position();
     double span = from - to;
     if (b.closed && span <= 0) span += m;

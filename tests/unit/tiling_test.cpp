@@ -96,6 +96,32 @@ TEST(Tiling, SeamsOfDifferentTessellationsWeldIntoOneClosedValidMesh) {
   EXPECT_EQ(above.vertices, above_before.vertices);
 }
 
+TEST(Tiling, OpenSurfacesWeldOverTheOverlapOfTheirChains) {
+  // Half spheres (open along x = 0) of two tessellations, in slabs along z:
+  // each cut crosses the surface in an arc whose two ends are the data's edge.
+  const SurfaceMesh a = detail::clip_to_slab(test::sphere_mesh(4), 0, 0, kInf, 1e-3);
+  const SurfaceMesh b = detail::clip_to_slab(turned_sphere(4), 0, 0, kInf, 1e-3);
+  const std::vector<double> cuts = {-0.35, 0.2};
+  std::vector<SurfaceMesh> parts;
+  for (std::size_t k = 0; k <= cuts.size(); ++k)
+    parts.push_back(detail::clip_to_slab(k % 2 == 0 ? a : b, 2, k == 0 ? -kInf : cuts[k - 1], k == cuts.size() ? kInf : cuts[k], 1e-3));
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    ASSERT_FALSE(detail::chains_on_plane(parts[k], 2, cuts[k]).at(0).closed);
+    const detail::SeamStitch seam = detail::stitch_seam(parts[k], parts[k + 1], 2, cuts[k], 0.05, 0.04);
+    ASSERT_TRUE(seam.stitched) << seam.failure;
+  }
+  const SurfaceMesh welded = detail::weld_parts(parts, 2, cuts);
+  const TopologyReport t = check_topology(welded);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_FALSE(t.self_intersecting);
+  EXPECT_EQ(t.components, 1u);
+  // The only boundary left is the half sphere's own rim, on x = 0, where the
+  // two sides' chains do not overlap at most an edge or two.
+  EXPECT_GT(t.boundary_edges, 0u);
+  const std::size_t rim = std::max(check_topology(a, false).boundary_edges, check_topology(b, false).boundary_edges);
+  EXPECT_LE(t.boundary_edges, rim + 8 * cuts.size());
+}
+
 TEST(Tiling, CutsAvoidAFaceLyingAcrossTheAxis) {
   // Half of the points on the plane x = 0, where the median falls.
   std::vector<Vec3> points;
