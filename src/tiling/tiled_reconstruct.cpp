@@ -158,12 +158,27 @@ TiledResult reconstruct_tiled(const PointSet& input, const ReconstructOptions& o
     parts.clear();
     out.tiles.clear();
     out.seams.clear();
-    for (std::size_t k = 0; k <= cuts.size(); ++k) {
-      const Slab& slab = mesh_slab(k == 0 ? -infinity : cuts[k - 1], k == cuts.size() ? infinity : cuts[k],
-                                   "slab " + std::to_string(k + 1) + " of " + std::to_string(cuts.size() + 1));
-      out.tiles.push_back(slab.tile);
-      parts.push_back(slab.part);
+    // A slab the pipeline refuses on its own (all its points on one plane:
+    // a stretch of flat ground in a scan) is meshed with its neighbour.
+    bool refused = false;
+    for (std::size_t k = 0; k <= cuts.size() && !refused; ++k) {
+      const double low = k == 0 ? -infinity : cuts[k - 1], high = k == cuts.size() ? infinity : cuts[k];
+      try {
+        const Slab& slab = mesh_slab(low, high, "slab " + std::to_string(k + 1) + " of " + std::to_string(cuts.size() + 1));
+        out.tiles.push_back(slab.tile);
+        parts.push_back(slab.part);
+      } catch (const Error& e) {
+        if (cuts.empty() || dynamic_cast<const Cancelled*>(&e) || dynamic_cast<const InvalidArgument*>(&e)) throw;
+        slabs.erase({low, high});
+        const std::size_t dropped = k < cuts.size() ? k : k - 1;
+        out.merged.warnings.push_back({"slab_merged", "the slab from " + format_number(low) + " to " + format_number(high) + " along " +
+                                                          "xyz"[axis] + " could not be meshed alone (" + e.what() + "): it was meshed with its neighbour"});
+        ++out.merged_seams;
+        cuts.erase(cuts.begin() + static_cast<std::ptrdiff_t>(dropped));
+        refused = true;
+      }
     }
+    if (refused) continue;
     std::vector<std::size_t> failed;
     for (std::size_t k = 0; k < cuts.size(); ++k) {
       const detail::SeamStitch stitch = detail::stitch_seam(parts[k], parts[k + 1], axis, cuts[k], tiling.seam_tolerance * d_prime,

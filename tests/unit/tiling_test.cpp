@@ -210,3 +210,26 @@ TEST(Tiling, ACutWhoseSidesCannotBeWeldedIsDroppedAndTheMeshStaysClosed) {
   EXPECT_TRUE(t.manifold());
   EXPECT_FALSE(t.self_intersecting);
 }
+
+TEST(Tiling, ASlabThePipelineRefusesAloneIsMeshedWithItsNeighbour) {
+  // A box with a long flat strip along x (a scan's stretch of ground): the
+  // last slab holds strip points only, all on one plane, which Poisson refuses.
+  PointSet points = test::sample_with_normals(test::cube_mesh(), 12000, 2);
+  points.normals.clear();
+  for (int i = 0; i < 800; ++i)
+    for (int j = 0; j < 30; ++j) points.points.push_back({0.6 + 0.025 * i, -0.4 + 0.027 * j, -0.5});
+  ReconstructOptions options;
+  options.delta = 6;
+  TilingOptions tiling;
+  tiling.tiles = 3;
+  const TiledResult tiled = reconstruct_tiled(points, options, tiling);
+  EXPECT_GE(tiled.merged_seams, 1u);
+  std::size_t refused = 0;
+  for (const Warning& w : tiled.merged.warnings) refused += w.code == "slab_merged";
+  EXPECT_GE(refused, 1u);
+  EXPECT_EQ(tiled.tiles.size() + tiled.merged_seams, 3u);
+  const TopologyReport t = check_topology(tiled.merged.mesh);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_FALSE(t.self_intersecting);
+  EXPECT_GT(tiled.merged.mesh.faces.size(), 0u);
+}
