@@ -101,7 +101,10 @@ for n in sizes:
         row["tiled"] = ours(cloud, tag, ["--tiles", "8"])
         if row["tiled"]:
             row["tiled"].update(evaluate(tag + ".ply", tag))
-            row["tiled"]["seams"] = json.load(open(tag + ".report.json"))["tiling"]["seams"]
+            tiling = json.load(open(tag + ".report.json"))["tiling"]
+            row["tiled"]["seams"] = tiling["seams"]
+            row["tiled"]["dropped_cuts"] = tiling.get("merged_seams", 0)
+            row["tiled"]["slabs"] = len(tiling["tiles"])
     if n <= args.peers_max:
         tag = os.path.join(out, f"fandisk-{n}-pif")
         row["pif"] = ours(cloud, tag, ["--no-features"])

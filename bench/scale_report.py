@@ -61,14 +61,17 @@ tiled = [r for r in rows if r.get("tiled") and r.get("ours")]
 if tiled:
     lines += ["", "## Tiles against one run", "",
               "`reconstruct --tiles 8` (sharpmesh/tiled.h): the cloud in 8 slabs along its longest axis, normals oriented "
-              "once on the whole cloud, each slab meshed with a margin of 6 d' and clipped to its slab, the seams welded. "
+              "once on the whole cloud, each slab meshed with a margin of 6 d' and clipped to its slab, the seams welded; a cut "
+              "whose two sides cannot be welded is dropped and its slabs meshed as one. "
               "Valid = closed, manifold, no self-intersecting facet (`sharpmesh eval`).", "",
-              "| points | run | wall s | peak GiB | facets | Hausdorff U | mean U | feature recall | valid | boundary edges | seams welded |",
+              "| points | run | wall s | peak GiB | facets | Hausdorff U | mean U | feature recall | valid | boundary edges | cuts welded |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in tiled:
         for label, m in (("one run", r["ours"]), ("8 tiles", r["tiled"])):
             seams = m.get("seams")
-            welded = "—" if seams is None else f"{sum(1 for s in seams if s['stitched'])} of {len(seams)}"
+            dropped = m.get("dropped_cuts", 0)
+            welded = "—" if seams is None else (f"{sum(1 for s in seams if s['stitched'])} of {len(seams) + dropped}"
+                                                 + (f" ({dropped} dropped: {m.get('slabs')} slabs meshed)" if dropped else ""))
             lines.append(f"| {r['points']:,} | {label} | {fmt(m['seconds'])} | {fmt(m['peak_mib'] / 1024, 2)} | {m['facets']:,} | "
                          f"{fmt(m.get('hausdorff_U'), 3)} | {fmt(m.get('mean_U'), 4)} | {fmt(m.get('feature_recall'), 3)} | "
                          f"{'yes' if m.get('valid') else 'no'} | {m.get('boundary_edges', '—')} | {welded} |")
