@@ -9,6 +9,7 @@ parser.add_argument("--root", required=True)
 parser.add_argument("--max", type=int, default=30_000_000)
 parser.add_argument("--peers-max", type=int, default=2_000_000)
 parser.add_argument("--tiled-min", type=int, default=1_000_000)
+parser.add_argument("--no-lidar", action="store_true", help="leave out the real LiDAR tiles")
 parser.add_argument("--binary", help="the sharpmesh to measure (default: BUILD's; a copy lets the build go on meanwhile)")
 args = parser.parse_args()
 binary = args.binary or os.path.join(args.build, "apps/sharpmesh/sharpmesh")
@@ -122,7 +123,7 @@ for n in sizes:
     rows.append(row)
 
 tiles = []
-for name in ("ahn3_cropped_1", "ahn3_cropped_2"):
+for name in () if args.no_lidar else ("ahn3_cropped_1", "ahn3_cropped_2"):
     path = os.path.join(lidar, name + ".laz")
     if not os.path.exists(path):
         continue
