@@ -54,6 +54,7 @@ bench: data
 	@bench/sampling_seeds $(BUILD_DIR)
 	@bench/scans $(BUILD_DIR)
 	@bench/corpus_generated $(BUILD_DIR)
+	@bench/city/run $(BUILD_DIR)
 	@bench/colmap_baseline $(BUILD_DIR)
 	@bench/laz $(BUILD_DIR)
 	@bench/stereo_study $(BUILD_DIR)

@@ -1,12 +1,15 @@
 // sharpmesh features CLOUD -o OUT.polylines.txt: sharp-edge polylines and
 // junctions (thesis 7.2), timed per stage as in Table 7.1.
 #include <cstdio>
+#include <variant>
 
 #include "cli.h"
 #include "option_flags.h"
 #include "sharpmesh/eval.h"
 #include "sharpmesh/features.h"
 #include "sharpmesh/io.h"
+#include "sharpmesh/option_fields.h"
+#include "sharpmesh/pointset.h"
 #include "sharpmesh/report.h"
 
 namespace sharpmesh::cli {
@@ -16,6 +19,7 @@ Command add_features(CLI::App& app) {
     std::string input, output, edge_points;
     std::vector<int> classes;
     FeatureOptions features;
+    WallOptions walls;
     bool ascii = false;
   };
   auto o = std::make_shared<Options>();
@@ -27,15 +31,19 @@ Command add_features(CLI::App& app) {
   sub->add_option("--edge-points", o->edge_points, "Write every point with its class, edge direction and eigenvalue ratios (.ply)");
   sub->add_flag("--ascii", o->ascii, "Write --edge-points as ASCII PLY");
   add_option_fields(*sub, o->features, feature_option_fields());
+  add_option_fields(*sub, o->walls, wall_option_fields());
   common->add_to(*sub);
   auto run = [o, common] {
     check_output(o->output, "polylines");
     check_output(o->edge_points, "points");
     check_output(common->report, "report");
     o->features.check();
+    o->walls.check();
     const auto start = std::chrono::steady_clock::now();
-    const PointSet points = read_cloud(o->input, o->classes);
+    PointSet points = read_cloud(o->input, o->classes);
     ProgressPrinter printer(common->quiet);
+    const WallResult walls = o->walls.mode == WallMode::Off ? WallResult{}
+                             : fill_vertical_walls(points, average_spacing(points), o->walls, printer.callback());
     const FeatureResult result = extract_features(points, o->features, printer.callback());
     write_polylines(o->output, result.graph.polylines);
     if (!o->edge_points.empty()) write_feature_points(o->edge_points, points.points, result.points, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
@@ -54,6 +62,10 @@ Command add_features(CLI::App& app) {
         printer.message(line);
       }
     }
+    report["walls"] = {{"airborne", walls.airborne}, {"filled", walls.filled}, {"upper_points", walls.upper_points},
+                       {"added_points", walls.added_points}};
+    for (const OptionField<WallOptions>& f : wall_option_fields())
+      report["parameters"][f.name] = std::visit([](const auto& v) { return nlohmann::json(v); }, f.get(o->walls));
     report["command"] = "features";
     report["input"] = o->input;
     report["output"] = o->output;

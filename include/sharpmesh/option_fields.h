@@ -56,6 +56,7 @@ struct ReconstructOptions;
 struct ReconstructTuning;
 struct StereoReconstructionOptions;
 struct TilingOptions;
+struct WallOptions;
 
 /// FeatureOptions (thesis 7.2).
 const std::vector<OptionField<FeatureOptions>>& feature_option_fields();
@@ -70,6 +71,9 @@ const std::vector<OptionField<ReconstructTuning>>& tuning_option_fields();
 const std::vector<OptionField<DecimationOptions>>& decimation_option_fields();
 /// StereoReconstructionOptions (thesis Ch. 6 and the fill beyond it).
 const std::vector<OptionField<StereoReconstructionOptions>>& stereo_option_fields();
+/// WallOptions (sharpmesh/pointset.h: walls under roof edges of airborne scans;
+/// part of the reconstruct table under the group "Airborne scans").
+const std::vector<OptionField<WallOptions>>& wall_option_fields();
 /// TilingOptions (sharpmesh/tiled.h: reconstruct in slabs).
 const std::vector<OptionField<TilingOptions>>& tiling_option_fields();
 

@@ -66,6 +66,43 @@ std::size_t remove_duplicate_points(PointSet& points);
 std::vector<double> local_thickness(const PointSet& points, double min_thickness, double max_thickness,
                                     std::vector<std::uint32_t>* facing = nullptr);
 
+/// Vertical walls under roof edges (beyond the thesis; issue 44): an
+/// airborne scanner looks down, so the walls between a roof's edge and the
+/// ground get few points or none, and the eave is an edge of one sampled
+/// face only. Where the last point of a locally flat face (towards the
+/// drop) has points at least `min_drop` lower within `reach` horizontally,
+/// steeper than 1.5 in 1, a column of points one spacing apart is added
+/// half a spacing beyond it towards them, from the lowest one up to it,
+/// wherever the cloud has no point within 0.75 spacings: the footprint edge
+/// extruded along the vertical, the usual prior of building reconstruction
+/// from airborne LiDAR. Lengths in average spacings; z is up.
+enum class WallMode { Automatic, On, Off };
+struct WallOptions {
+  /// auto: on for clouds that look airborne (looks_airborne); on; off.
+  WallMode mode = WallMode::Automatic;
+  double min_drop = 4;     ///< [avg]
+  double reach = 1.5;      ///< [avg]
+  /// Smallest over largest eigenvalue of the covariance of the upper
+  /// point's 12 nearest points, at most: a face, not a tree crown.
+  double max_flatness = 0.03;
+  void check() const;
+};
+struct WallResult {
+  bool airborne = false;          ///< the automatic test's verdict
+  bool filled = false;            ///< walls were added (or looked for)
+  std::size_t upper_points = 0;   ///< points at the top of a drop
+  std::size_t added_points = 0;
+};
+/// A cloud looks airborne when its height range is at most 0.3 of its
+/// smaller horizontal extent and at most a fifth of its points have another
+/// point below them (within half a spacing horizontally, more than two
+/// lower): a scan from above sees one layer, a closed object two.
+bool looks_airborne(const PointSet& points, double average_spacing);
+/// Adds the walls (appended after the input's points; with normals, the
+/// new points' face away from the upper point).
+WallResult fill_vertical_walls(PointSet& points, double average_spacing, const WallOptions& options = {},
+                               const Progress& progress = {});
+
 /// Keeps one point per cell of a regular grid of the given cell size (App. A.5).
 std::size_t grid_simplify(PointSet& points, double cell_size);
 

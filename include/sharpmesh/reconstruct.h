@@ -103,6 +103,7 @@ struct ReconstructOptions {
   double average_spacing = 0;
   FeatureMode feature_mode = FeatureMode::Extract;
   FeatureOptions features;               ///< used with FeatureMode::Extract
+  WallOptions walls;                     ///< walls under roof edges of airborne scans (beyond the thesis)
   std::vector<Polyline> given_features;  ///< used with FeatureMode::Given
   double ball_radius = 2.0 / 3.0;        ///< protecting-ball radius, fraction of d' (7.3.2)
   bool adapt_balls_to_gap = true;        ///< grow balls to reach the implicit surface (beyond the thesis)
@@ -284,6 +285,7 @@ struct ReconstructResult {
   std::size_t used_points = 0;       ///< after removing duplicated and unorientable points
   std::size_t boundary_edges = 0;    ///< of the output mesh (0: closed)
   FeatureResult features;            ///< when extracted (graph only when given)
+  WallResult walls;                  ///< points added under roof edges (sharpmesh/pointset.h)
   NormalsStats normals;
   ImplicitStats implicit;
   ImplicitMeshingResult meshing;     ///< feature protection counts and gaps

@@ -54,17 +54,7 @@ constexpr double kMaxJunctionRadius = 8;
 
 // RMS distance of the points `ids` to their least-squares plane.
 double plane_residual(const std::vector<Vec3>& points, const std::vector<std::uint32_t>& ids) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (std::uint32_t i : ids) c += Eigen::Vector3d(points[i][0], points[i][1], points[i][2]);
-  c /= ids.size();
-  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-  for (std::uint32_t i : ids) {
-    const Eigen::Vector3d d = Eigen::Vector3d(points[i][0], points[i][1], points[i][2]) - c;
-    m += d * d.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(m);
-  return std::sqrt(std::max(0.0, solver.eigenvalues()(0)) / ids.size());
+  return std::sqrt(detail::scatter_eigenvalues(points, ids)(0) / static_cast<double>(ids.size()));
 }
 
 // RMS distance of the points `ids` to two parallel sheets when they form

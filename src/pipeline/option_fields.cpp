@@ -156,6 +156,7 @@ std::vector<OptionField<O>> reconstruct_fields() {
       member_field("threads", "Worker threads of this reconstruction (0: every core)", "", &O::threads),
   };
   for (const OptionField<FeatureOptions>& feature : feature_option_fields()) f.push_back(nested_field(feature, &O::features));
+  for (const OptionField<WallOptions>& field : wall_option_fields()) f.push_back(nested_field(field, &O::walls));
   for (const OptionField<DecimationOptions>& field : decimation_option_fields())
     f.push_back(nested_field(field, &O::compaction, "Compaction (beyond the thesis)"));
   for (const OptionField<ReconstructTuning>& field : tuning_option_fields())

@@ -84,6 +84,7 @@ void ReconstructOptions::check(std::size_t n) const {
   if (normal_source == NormalSource::Cvcm && feature_mode != FeatureMode::Extract)
     throw InvalidArgument("normals 'cvcm' need feature extraction (the CVCM is computed there, 7.4)");
   compaction.check();
+  walls.check();
   if (!(trim_distance >= 0) || !std::isfinite(trim_distance))
     throw InvalidArgument("trim distance must be >= 0 (got " + format_number(trim_distance) + ")");
   if (!(poisson_spacing >= 0 && poisson_spacing <= 4))
@@ -207,6 +208,12 @@ PointSet prepare(PointSet input, const ReconstructOptions& options, const Progre
     result.average_spacing = options.average_spacing > 0 ? options.average_spacing : average_spacing(input, options.spacing_k, progress);
   }
   if (!(result.average_spacing > 0)) throw InvalidInput("reconstruction: the average spacing is zero (duplicated points?)");
+  {
+    // Before everything that reads the surface: the walls give the eaves
+    // their second face (features) and the mesh its walls (Poisson, trim).
+    StageTimer timer(result.stages, "walls");
+    result.walls = fill_vertical_walls(input, result.average_spacing, options.walls, progress);
+  }
   result.d_prime = options.delta * result.average_spacing;
   result.criteria = RefinementCriteria::from_spacing(result.d_prime);
   const double area = estimated_area_from_spacing(input.size(), result.average_spacing);

@@ -121,6 +121,8 @@ nlohmann::json reconstruct_report(const ReconstructResult& r, const ReconstructO
         {"ball_radius", length_json(o.ball_radius * r.d_prime, diagonal)},
         {"estimated_facets", r.estimated_facets}}},
       {"counts", counts_report(r)},
+      {"walls", {{"airborne", r.walls.airborne}, {"filled", r.walls.filled}, {"upper_points", r.walls.upper_points},
+                 {"added_points", r.walls.added_points}}},
       {"data_fit", data_fit_report(r)},
       {"self_intersections",
        {{"repair", o.repair_self_intersections},

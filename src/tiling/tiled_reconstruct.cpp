@@ -41,9 +41,22 @@ TiledResult reconstruct_tiled(const PointSet& input, const ReconstructOptions& o
   // anchors (and the winding repair) take the inside for the outside, and
   // Poisson then puts a second sheet inside the part. The slabs use them as
   // given.
+  // Walls of the whole cloud, decided once: a slab's own airborne test
+  // could decide otherwise than its neighbour's.
+  PointSet walled;
+  {
+    StageTimer timer(out.merged.stages, "walls");
+    const WallMode mode = options.walls.mode;
+    if (mode == WallMode::On || (mode == WallMode::Automatic && looks_airborne(input, tile_options.average_spacing))) {
+      walled = input;
+      out.merged.walls = fill_vertical_walls(walled, tile_options.average_spacing, options.walls, progress);
+    }
+    tile_options.walls.mode = WallMode::Off;
+  }
+  const PointSet& source = walled.empty() ? input : walled;
   PointSet oriented;
-  if (!input.has_normals() || options.recompute_normals) {
-    NormalsResult normals = reconstruct_normals(input, tile_options, progress);
+  if (!source.has_normals() || options.recompute_normals) {
+    NormalsResult normals = reconstruct_normals(source, tile_options, progress);
     for (StageTiming s : normals.stages) {
       s.name = "whole cloud: " + s.name;
       out.merged.stages.push_back(s);
@@ -51,7 +64,7 @@ TiledResult reconstruct_tiled(const PointSet& input, const ReconstructOptions& o
     out.merged.normals = normals.normals;
     oriented = std::move(normals.points);
   }
-  const PointSet& cloud = oriented.empty() ? input : oriented;
+  const PointSet& cloud = oriented.empty() ? source : oriented;
   tile_options.recompute_normals = false;
   tile_options.check_input_normals = false;
   const double d_prime = options.delta * tile_options.average_spacing;
