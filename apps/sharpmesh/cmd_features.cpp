@@ -44,7 +44,9 @@ Command add_features(CLI::App& app) {
     ProgressPrinter printer(common->quiet);
     const WallResult walls = o->walls.mode == WallMode::Off ? WallResult{}
                              : fill_vertical_walls(points, average_spacing(points), o->walls, printer.callback());
-    const FeatureResult result = extract_features(points, o->features, printer.callback());
+    FeatureOptions features = o->features;
+    if (o->walls.mode != WallMode::Off) features.max_offset_radius = offset_radius_bound(features, walls.airborne);
+    const FeatureResult result = extract_features(points, features, printer.callback());
     write_polylines(o->output, result.graph.polylines);
     if (!o->edge_points.empty()) write_feature_points(o->edge_points, points.points, result.points, o->ascii ? PlyFormat::Ascii : PlyFormat::Binary);
     const double diagonal = bounding_box(points.points).diagonal();

@@ -18,6 +18,13 @@ using Matrix3 = std::array<double, 9>;  ///< row-major symmetric 3x3
 struct FeatureOptions {
   /// Offset radius R as a fraction of the bounding-sphere radius (7.2.1: 0.1).
   double offset_radius = 0.1;
+  /// Beyond the thesis: R at most this many average spacings. A scene's
+  /// bounding sphere says nothing of the size of its buildings: 0.1 of it is
+  /// 7 m on a 100 m city tile, 700 m on a 10 km one, and another value on
+  /// every slab of a tiled run. -1 = automatic: kSceneOffsetRadius on clouds
+  /// that look airborne (looks_airborne, sharpmesh/pointset.h), no bound on
+  /// objects; 0 = no bound.
+  double max_offset_radius = -1;
   /// Convolution radius r as a fraction of R (7.2.1: 0.1). 0 = automatic:
   /// r = R/10, enlarged where the estimated noise level needs it.
   double convolution_radius = 0.0;
@@ -70,6 +77,18 @@ struct FeatureGraph {
   std::vector<Polyline> polylines;
   std::vector<Junction> junctions;
 };
+
+/// The automatic bound on R for airborne clouds, in average spacings: on the
+/// generated districts of bench/city (docs/city.md) eaves are found best with
+/// R about 24 spacings (7 m at 11 points per square metre), and worse at half
+/// or three times that.
+inline constexpr double kSceneOffsetRadius = 24;
+
+/// The bound on R that `options` ask for on a cloud whose airborne verdict
+/// is `airborne` [average spacings; 0: none].
+inline double offset_radius_bound(const FeatureOptions& options, bool airborne) {
+  return options.max_offset_radius >= 0 ? options.max_offset_radius : airborne ? kSceneOffsetRadius : 0.0;
+}
 
 /// Noise estimate, as a fraction of the average spacing, below which a cloud
 /// is clean: CAD samples measure 0.001-0.021; 0.2% and 0.5% uniform noise on

@@ -94,9 +94,11 @@ struct WallResult {
   std::size_t added_points = 0;
 };
 /// A cloud looks airborne when its height range is at most 0.3 of its
-/// smaller horizontal extent and at most a fifth of its points have another
+/// smaller horizontal extent and fewer than two points in five have another
 /// point below them (within half a spacing horizontally, more than two
-/// lower): a scan from above sees one layer, a closed object two.
+/// lower): a scan from above sees one layer (with trees' echoes: a third of
+/// the points on the Delft tiles), a closed object two (half its points or
+/// more: tops over bottoms, walls over themselves).
 bool looks_airborne(const PointSet& points, double average_spacing);
 /// Adds the walls (appended after the input's points; with normals, the
 /// new points' face away from the upper point).

@@ -24,6 +24,8 @@ void FeatureOptions::check() const {
   };
   positive(offset_radius, "offset radius R");
   if (offset_radius > 10) throw InvalidArgument("offset radius R is a fraction of the bounding-sphere radius: " + format_number(offset_radius) + " is too large");
+  if (!(max_offset_radius == -1 || (max_offset_radius >= 0 && std::isfinite(max_offset_radius))))
+    throw InvalidArgument("largest offset radius must be -1 (automatic), 0 (none) or a number of average spacings");
   if (!(convolution_radius >= 0) || convolution_radius > 100) throw InvalidArgument("convolution radius must be a fraction of R in [0, 100] (0: automatic)");
   positive(t1, "t1");
   positive(t2, "t2");
@@ -305,6 +307,12 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
   double sphere_radius = 0;
   for (const Vec3& p : input.points) sphere_radius = std::max(sphere_radius, distance(p, center));
   result.offset_radius = options.offset_radius * sphere_radius;
+  const auto bound_offset_radius = [&](const detail::KnnIndex& index) {
+    if (options.max_offset_radius == 0) return;
+    const double spacing = detail::average_spacing(input.points, index, 6);
+    const double bound = offset_radius_bound(options, options.max_offset_radius < 0 && looks_airborne(input, spacing));
+    if (bound > 0) result.offset_radius = std::min(result.offset_radius, bound * spacing);
+  };
 
   std::vector<Vec3> edge_points, edge_directions;
   std::vector<std::uint32_t> edge_ids;
@@ -314,6 +322,7 @@ FeatureResult extract_features_centred(const PointSet& input, const FeatureOptio
   {
     StageTimer timer(result.stages, "detection");
     input_index = std::make_unique<detail::KnnIndex>(input.points);
+    bound_offset_radius(*input_index);
     std::unique_ptr<detail::KnnIndex> smoothed_index;
     const detail::KnnIndex* index = input_index.get();
     if (options.denoise_k <= 0) classify_cloud(input.points, *index, options, result, progress);

@@ -11,6 +11,10 @@ const std::vector<OptionField<FeatureOptions>>& feature_option_fields() {
   static const std::vector<OptionField<O>> fields = [] {
     std::vector<OptionField<O>> f = {
         member_field("offset_radius", "Voronoi offset radius R (7.2.1)", "fraction of the bounding-sphere radius", &O::offset_radius),
+        member_field("max_offset_radius",
+                     "R at most this (beyond the thesis: a scene's bounding sphere is no measure of its buildings); -1: "
+                     "automatic, 24 spacings on clouds that look airborne, no bound on objects; 0: no bound",
+                     "average spacings", &O::max_offset_radius),
         member_field("convolution_radius", "Convolution radius r (7.2.1); 0: automatic, R/10 widened to 4 estimated noise deviations",
                      "fraction of R", &O::convolution_radius),
         member_field("t1", "Smooth if lambda0/lambda1 > t1 (Algorithm 1)", "", &O::t1),

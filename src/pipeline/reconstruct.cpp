@@ -233,7 +233,11 @@ PointSet prepare(PointSet input, const ReconstructOptions& options, const Progre
                           " facets, above the limit of " + format_number(options.max_facets) + " (raise delta or --max-facets)");
 
   if (options.feature_mode == FeatureMode::Extract) {
-    result.features = extract_features(input, options.features, progress);
+    // The airborne verdict is the walls stage's, taken before the walls
+    // made the cloud two layers deep there.
+    FeatureOptions features = options.features;
+    features.max_offset_radius = offset_radius_bound(features, result.walls.airborne);
+    result.features = extract_features(input, features, progress);
     result.stages.insert(result.stages.end(), result.features.stages.begin(), result.features.stages.end());
   } else if (options.feature_mode == FeatureMode::Given) {
     result.features.graph.polylines = options.given_features;

@@ -77,7 +77,7 @@ bool looks_airborne(const PointSet& points, double average_spacing) {
     ++tested;
     covering += below;
   }
-  return covering * 5 <= tested;
+  return covering * 5 < tested * 2;
 }
 
 WallResult fill_vertical_walls(PointSet& points, double average_spacing, const WallOptions& options, const Progress& progress) {

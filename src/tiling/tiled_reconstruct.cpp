@@ -47,7 +47,10 @@ TiledResult reconstruct_tiled(const PointSet& input, const ReconstructOptions& o
   {
     StageTimer timer(out.merged.stages, "walls");
     const WallMode mode = options.walls.mode;
-    if (mode == WallMode::On || (mode == WallMode::Automatic && looks_airborne(input, tile_options.average_spacing))) {
+    const bool airborne = looks_airborne(input, tile_options.average_spacing);
+    // R's bound too: every slab takes the whole cloud's.
+    tile_options.features.max_offset_radius = offset_radius_bound(options.features, airborne);
+    if (mode == WallMode::On || (mode == WallMode::Automatic && airborne)) {
       walled = input;
       out.merged.walls = fill_vertical_walls(walled, tile_options.average_spacing, options.walls, progress);
     }

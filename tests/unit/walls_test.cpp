@@ -8,6 +8,7 @@
 #include <random>
 
 #include "fixtures.h"
+#include "sharpmesh/features.h"
 #include "sharpmesh/pointset.h"
 
 using namespace sharpmesh;
@@ -130,4 +131,24 @@ TEST(Walls, BadOptionsAreRefusedByName) {
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("wall reach"), std::string::npos) << e.what();
   }
+}
+
+TEST(Walls, AirborneCloudsBoundTheOffsetRadiusInSpacingsObjectsKeepTheThesisOne) {
+  FeatureOptions automatic;
+  EXPECT_EQ(offset_radius_bound(automatic, true), kSceneOffsetRadius);
+  EXPECT_EQ(offset_radius_bound(automatic, false), 0.0);
+  FeatureOptions none;
+  none.max_offset_radius = 0;
+  EXPECT_EQ(offset_radius_bound(none, true), 0.0);
+
+  // A bound that binds: R is that many spacings.
+  const PointSet scene = house_from_above(false);
+  FeatureOptions bounded;
+  bounded.max_offset_radius = 2;
+  const FeatureResult small = extract_features(scene, bounded);
+  EXPECT_NEAR(small.offset_radius, 2 * small.average_spacing, 1e-9 * small.offset_radius);
+  // An object: the thesis's 0.1 of the bounding sphere, automatic or not.
+  const PointSet sphere = test::sample_with_normals(test::sphere_mesh(3), 20000, 3);
+  const FeatureResult thesis = extract_features(sphere);
+  EXPECT_NEAR(thesis.offset_radius, 0.1, 0.005);
 }
