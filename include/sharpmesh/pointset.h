@@ -94,11 +94,11 @@ struct WallResult {
   std::size_t added_points = 0;
 };
 /// A cloud looks airborne when its height range is at most 0.3 of its
-/// smaller horizontal extent and fewer than two points in five have another
-/// point below them (within half a spacing horizontally, more than two
-/// lower): a scan from above sees one layer (with trees' echoes: a third of
-/// the points on the Delft tiles), a closed object two (half its points or
-/// more: tops over bottoms, walls over themselves).
+/// smaller horizontal extent and fewer than 65% of its columns two spacings
+/// wide hold points more than two spacings apart in height: a scan from
+/// above sees one layer except under trees and at walls (half the columns
+/// of the Delft tiles), a closed object two (81-100% of the columns of the
+/// generated corpus's solids, flat ones included).
 bool looks_airborne(const PointSet& points, double average_spacing);
 /// Adds the walls (appended after the input's points; with normals, the
 /// new points' face away from the upper point).

@@ -67,17 +67,17 @@ bool looks_airborne(const PointSet& points, double average_spacing) {
   const BoundingBox box = bounding_box(points.points);
   const double width = std::min(box.max[0] - box.min[0], box.max[1] - box.min[1]);
   if (!(box.max[2] - box.min[2] <= 0.3 * width)) return false;
-  // One point in 16 is enough to tell one layer from two.
-  const ColumnGrid grid(points.points, 0.5 * average_spacing);
-  std::size_t tested = 0, covering = 0;
-  for (std::size_t i = 0; i < points.size(); i += 16) {
-    const Vec3& p = points.points[i];
-    bool below = false;
-    grid.within(p, 0.5 * average_spacing, [&](std::uint32_t j) { below = below || points.points[j][2] < p[2] - 2 * average_spacing; });
-    ++tested;
-    covering += below;
+  // Columns two spacings wide: their lowest and highest points.
+  const double cell = 2 * average_spacing;
+  std::unordered_map<std::uint64_t, std::pair<double, double>> columns;
+  for (const Vec3& p : points.points) {
+    const auto c = [&](double v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / cell))); };
+    const auto [it, added] = columns.try_emplace((c(p[0]) * 0x9E3779B97F4A7C15ULL) ^ c(p[1]), p[2], p[2]);
+    if (!added) it->second = {std::min(it->second.first, p[2]), std::max(it->second.second, p[2])};
   }
-  return covering * 5 < tested * 2;
+  std::size_t deep = 0;
+  for (const auto& column : columns) deep += column.second.second - column.second.first > cell;
+  return deep * 100 < columns.size() * 65;
 }
 
 WallResult fill_vertical_walls(PointSet& points, double average_spacing, const WallOptions& options, const Progress& progress) {
