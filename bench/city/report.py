@@ -51,7 +51,7 @@ def tile_picture(results_dir, tile, png):
     edges, kind = truth["edges"], truth["edges_kind"]
     origin = points.min(axis=0)
     fig, axes = plt.subplots(1, 2, figsize=(16, 8))
-    axes[0].scatter(points[:, 0] - origin[0], points[:, 1] - origin[1], c=points[:, 2], s=0.2, cmap="viridis")
+    axes[0].scatter(points[:, 0] - origin[0], points[:, 1] - origin[1], c=points[:, 2], s=0.1, cmap="viridis")
     axes[0].set_title("%s: the points by height" % tile)
     near_truth = cKDTree(edges).query(found)[0] <= 0.5 if len(found) else np.zeros(0, bool)
     near_found = cKDTree(found).query(edges)[0] <= 0.5 if len(found) else np.zeros(len(edges), bool)
@@ -66,7 +66,7 @@ def tile_picture(results_dir, tile, png):
         a.set_aspect("equal")
         a.set_xlabel("m")
     fig.tight_layout()
-    fig.savefig(png, dpi=70)
+    fig.savefig(png, dpi=50)
     plt.close(fig)
 
 
@@ -168,7 +168,7 @@ def main():
                   "`features` on the two AHN3 tiles as they come (LAZ, classes 1 unclassified with the trees, 2 ground, 6 "
                   "building, 9 water, 26 civil structure) and with `--classes 2,6`. No true edges ship with them: the "
                   "picture is the check.", "",
-                  "| tile | classes | points | wall points added | spacing (m) | R (m) | noise (m) | polylines | seconds | peak MiB |",
+                  "| tile | classes | points (walls included) | wall points added | spacing (m) | R (m) | noise (m) | polylines | seconds | peak MiB |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
         lines += delft
         if delft_picture(results_dir, os.path.join(docs, "city_delft.png")):

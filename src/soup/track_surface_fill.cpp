@@ -107,6 +107,9 @@ SoupFillStats fill_soup_from_tracks(TriangleSoup& soup, const StereoModel& model
   ReconstructOptions surface;
   surface.feature_mode = FeatureMode::None;
   surface.check_input_normals = false;  // oriented by the cameras, which MST cannot improve
+  // Tracks seen from cameras around a scene are not a scan from above: a
+  // street scene's tracks can be one layer and wide, yet its walls are seen.
+  surface.walls.mode = WallMode::Off;
   surface.delta = std::clamp(d_prime / average_spacing(tracks), 1.0, 16.0);
   // A first, loose cut that keeps Poisson from meshing open space; the
   // finer one follows below. No boundary clip at one spacing: it would open
