@@ -4,6 +4,7 @@
 // airborne survey's projected coordinates.
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <unordered_map>
 
 #include "core/knn.h"
@@ -94,13 +95,16 @@ WallResult fill_vertical_walls(PointSet& points, double average_spacing, const W
   // Each upper point's column: its foot (x, y), bottom and top heights, and
   // the horizontal direction towards the lower side.
   struct Column {
+    std::size_t upper = 0;  // the input point that starts it
     double x = 0, y = 0, bottom = 0, top = 0, nx = 0, ny = 0;
-    bool used = false;
   };
-  std::vector<Column> columns(in.size());
+  // Few points start a wall: each chunk keeps its own, sorted by point afterwards.
+  std::vector<Column> columns;
+  std::mutex columns_mutex;
   detail::parallel_chunks(in.size(), 1024, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids;
     std::vector<double> d2;
+    std::vector<Column> found;
     for (std::size_t i = begin; i < end; ++i) {
       const Vec3& p = in[i];
       // The lower side: the points at least `drop` below p within reach;
@@ -132,9 +136,12 @@ WallResult fill_vertical_walls(PointSet& points, double average_spacing, const W
       // Half a spacing beyond the upper point: its face's last sample lies
       // on average half a spacing short of the edge.
       const double step = std::min(0.5 * nearest_lower, 0.5 * s);
-      columns[i] = {p[0] + ux * step, p[1] + uy * step, bottom, p[2], ux, uy, true};
+      found.push_back({i, p[0] + ux * step, p[1] + uy * step, bottom, p[2], ux, uy});
     }
+    const std::lock_guard<std::mutex> lock(columns_mutex);
+    columns.insert(columns.end(), found.begin(), found.end());
   });
+  std::sort(columns.begin(), columns.end(), [](const Column& a, const Column& b) { return a.upper < b.upper; });
   // New points one spacing apart up each column, kept where the cloud and
   // the points added so far leave a gap of 0.75 spacings (in input order,
   // so the result does not depend on the threads).
@@ -147,11 +154,8 @@ WallResult fill_vertical_walls(PointSet& points, double average_spacing, const W
   std::vector<std::uint32_t> ids;
   std::vector<double> d2;
   const bool normals = points.has_normals(), colors = points.has_colors();
-  const std::size_t original = in.size();
-  for (std::size_t i = 0; i < original; ++i) {
-    const Column c = columns[i];
-    if (!c.used) continue;
-    ++result.upper_points;
+  result.upper_points = columns.size();
+  for (const Column& c : columns) {
     for (double z = c.bottom + 0.5 * s; z < c.top - 0.5 * s; z += s) {
       const Vec3 v{c.x, c.y, z};
       const std::uint64_t k = cell_key(v);
@@ -162,7 +166,7 @@ WallResult fill_vertical_walls(PointSet& points, double average_spacing, const W
       points.points.push_back(v);
       if (normals) points.normals.push_back({c.nx, c.ny, 0});
       if (colors) {
-        const Rgb colour = points.colors[i];
+        const Rgb colour = points.colors[c.upper];
         points.colors.push_back(colour);
       }
       ++result.added_points;
