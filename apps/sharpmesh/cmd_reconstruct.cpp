@@ -117,6 +117,8 @@ Command add_reconstruct(CLI::App& app) {
                         std::to_string(result.repairs.intersection_repair.remaining_pairs) + " pairs left");
       if (result.repairs.dataless_facets > 0)
         printer.message("  " + std::to_string(result.repairs.dataless_facets) + " facets of components away from the data removed");
+      if (result.repairs.thin_shell_facets > 0)
+        printer.message("  " + std::to_string(result.repairs.thin_shell_facets) + " facets of shells enclosing a space too thin for the data removed");
       if (options.feature_mode != FeatureMode::None) {
         char line[200];
         std::snprintf(line, sizeof line, "  features: %zu polylines, %zu balls (%zu grown), %zu/%zu segments are mesh edges, %zu uncovered gaps",

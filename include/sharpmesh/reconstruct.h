@@ -246,6 +246,7 @@ struct ImplicitStats {
 struct RepairStats {
   std::size_t trimmed_facets = 0;    ///< removed far from the data (open surfaces)
   std::size_t dataless_facets = 0;   ///< of whole components off the data, removed (remove_components_off_points)
+  std::size_t thin_shell_facets = 0;  ///< of closed components enclosing a space too thin for the data, removed (remove_thin_shell_components)
   std::size_t clipped_facets = 0;    ///< cut where the boundary overhangs the data (open surfaces)
   std::size_t flattened_vertices = 0;  ///< moved onto the face planes next to protected edges
   std::size_t unflattened_vertices = 0;  ///< moves undone because they made facets intersect

@@ -70,8 +70,13 @@ std::size_t sharpen_normals(PointSet& oriented, const std::vector<std::uint32_t>
 /// on open clouds.
 std::vector<signed char> occupancy_anchors(const PointSet& cloud, double average_spacing, double noise, int k) {
   std::vector<signed char> occupancy;
+  // The free cells must lie within a sheet's own band (its cell, one of
+  // dilation and the noise): a line that crosses more occupied cells on
+  // one side has crossed another sheet there, as from the inner face of a
+  // hollow part's wall thinner than four cells, whose outside lies beyond
+  // the outer face; the sheet parity decides those.
   for (double cell : {average_spacing, 1.5 * average_spacing}) {
-    occupancy = exterior_side_votes(cloud, cell, 6 * cell + 4 * noise);
+    occupancy = exterior_side_votes(cloud, cell, 2.5 * cell + 4 * noise);
     if (std::any_of(occupancy.begin(), occupancy.end(), [](signed char v) { return v != 0; })) break;
   }
   std::vector<signed char> votes = sheet_parity_votes(cloud, average_spacing, noise);

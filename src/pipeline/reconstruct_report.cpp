@@ -82,6 +82,7 @@ nlohmann::json counts_report(const ReconstructResult& r) {
           {"unsnapped_vertices", r.repairs.unsnapped_vertices},
           {"trimmed_facets", r.repairs.trimmed_facets},
           {"dataless_facets", r.repairs.dataless_facets},
+          {"thin_shell_facets", r.repairs.thin_shell_facets},
           {"clipped_facets", r.repairs.clipped_facets},
           {"boundary_edges", r.boundary_edges}});
   return counts;

@@ -79,6 +79,19 @@ SurfaceMesh stepped_prism_mesh(double h) {
   return m;
 }
 
+SurfaceMesh hollow_box_mesh(double half_size, double cavity_half_size, double ball_radius, int ball_levels) {
+  SurfaceMesh hollow = cube_mesh(half_size);
+  SurfaceMesh cavity = cube_mesh(cavity_half_size);
+  for (auto& f : cavity.faces) std::swap(f[1], f[2]);
+  SurfaceMesh ball = sphere_mesh(ball_levels, ball_radius);
+  for (const SurfaceMesh* part : {&cavity, &ball}) {
+    const auto base = static_cast<std::uint32_t>(hollow.vertices.size());
+    hollow.vertices.insert(hollow.vertices.end(), part->vertices.begin(), part->vertices.end());
+    for (auto f : part->faces) hollow.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  }
+  return hollow;
+}
+
 SurfaceMesh sphere_mesh(int levels, double radius) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   SurfaceMesh m;

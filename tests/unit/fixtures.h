@@ -27,6 +27,9 @@ SurfaceMesh tetrahedron_mesh();
 SurfaceMesh sphere_mesh(int levels = 3, double radius = 1.0);
 /// Closed cylinder of radius r, height h, around z, with `segments` sides.
 SurfaceMesh cylinder_mesh(double radius, double height, int segments);
+/// The cube [-h, h]^3 hollowed by the cube [-c, c]^3 (its facets facing into
+/// the cavity), with a ball of radius r (`levels` subdivisions) in the middle.
+SurfaceMesh hollow_box_mesh(double half_size, double cavity_half_size, double ball_radius, int ball_levels);
 /// A fresh empty folder, removed with its content when the object dies.
 class TempDir {
  public:

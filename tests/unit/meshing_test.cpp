@@ -350,6 +350,41 @@ TEST(Trim, RemovesOnlyTheComponentsThatCarryNoData) {
   EXPECT_THROW(remove_components_off_points(alone, points, 0.0), InvalidArgument);
 }
 
+// Inside a large sphere: a flat ellipsoid 0.4 thick as a solid and one as
+// a cavity (facing inwards), a sphere 2 thick and an open sheet. At 0.6 the
+// two flat shells go; the thick sphere, the sheet and the largest stay.
+TEST(ThinShells, RemovesClosedComponentsEnclosingTooThinASpace) {
+  auto placed = [](SurfaceMesh m, const Vec3& scale, const Vec3& offset, bool inward) {
+    for (Vec3& v : m.vertices) v = Vec3{scale[0] * v[0], scale[1] * v[1], scale[2] * v[2]} + offset;
+    if (inward)
+      for (Triangle& t : m.faces) std::swap(t[1], t[2]);
+    return m;
+  };
+  auto append = [](SurfaceMesh& to, const SurfaceMesh& from) {
+    const auto base = static_cast<std::uint32_t>(to.vertices.size());
+    to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
+    for (Triangle t : from.faces) to.faces.push_back({t[0] + base, t[1] + base, t[2] + base});
+  };
+  const SurfaceMesh unit = test::sphere_mesh(3, 1.0);
+  const SurfaceMesh outer = placed(unit, {10, 10, 10}, {0, 0, 0}, false);
+  const SurfaceMesh thin_solid = placed(unit, {1.5, 1.5, 0.2}, {-4, 0, 0}, false);
+  const SurfaceMesh thin_cavity = placed(unit, {1.5, 0.2, 1.5}, {4, 0, 0}, true);
+  const SurfaceMesh thick = placed(unit, {1, 1, 1}, {0, 4, 0}, false);
+  const SurfaceMesh sheet = flat_grid(4, 0.5, {0, -5, 0});
+  SurfaceMesh mesh = outer;
+  for (const SurfaceMesh* part : {&thin_solid, &thick, &thin_cavity, &sheet}) append(mesh, *part);
+  const std::size_t kept = outer.faces.size() + thick.faces.size() + sheet.faces.size();
+
+  EXPECT_EQ(remove_thin_shell_components(mesh, 0.6), thin_solid.faces.size() + thin_cavity.faces.size());
+  EXPECT_EQ(mesh.faces.size(), kept);
+  EXPECT_EQ(remove_thin_shell_components(mesh, 0.6), 0u) << "nothing thin left";
+  EXPECT_EQ(remove_thin_shell_components(mesh, 2.5), thick.faces.size()) << "a sphere 2 thick is thin against 2.5";
+
+  SurfaceMesh alone = thin_solid;
+  EXPECT_EQ(remove_thin_shell_components(alone, 0.6), 0u) << "the largest component stays, thin or not";
+  EXPECT_THROW(remove_thin_shell_components(alone, 0.0), InvalidArgument);
+}
+
 // A sphere with one vertex pushed through to the far side: its fan of
 // facets crosses the sphere there. The repair cuts both places out and
 // fills them: closed again, nothing crossing, the rest untouched. A mesh

@@ -347,16 +347,7 @@ TEST(Normals, SheetParityVotesDecideThinPlatesAndCavities) {
 
   // A hollow box (walls 0.1 thick) with a ball in its cavity; the inner
   // shell's facets face into the cavity.
-  SurfaceMesh hollow = test::cube_mesh(0.5);
-  SurfaceMesh cavity = test::cube_mesh(0.4);
-  for (auto& f : cavity.faces) std::swap(f[1], f[2]);
-  SurfaceMesh ball = test::sphere_mesh(4, 0.2);
-  for (const SurfaceMesh* part : {&cavity, &ball}) {
-    const auto base = static_cast<std::uint32_t>(hollow.vertices.size());
-    hollow.vertices.insert(hollow.vertices.end(), part->vertices.begin(), part->vertices.end());
-    for (auto f : part->faces) hollow.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
-  }
-  const PointSet nested = test::sample_with_normals(hollow, 40000, 6);
+  const PointSet nested = test::sample_with_normals(test::hollow_box_mesh(0.5, 0.4, 0.2, 4), 40000, 6);
   PointSet nested_flipped = nested;
   for (std::size_t i = 0; i < nested.size(); i += 3) nested_flipped.normals[i] = -1.0 * nested_flipped.normals[i];
   const std::vector<signed char> nested_votes = sheet_parity_votes(nested_flipped, average_spacing(nested, 6), 0.0);

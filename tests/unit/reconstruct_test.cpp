@@ -590,6 +590,23 @@ TEST(Reconstruct, OneThreadGivesTheSameMeshAsEveryCore) {
   EXPECT_THROW(reconstruct(points, options), InvalidArgument);
 }
 
+// A hollow box whose walls are about three spacings thick, with a ball in
+// its cavity: the cavity's walls face into the cavity and the ball out of
+// itself. From the cavity's face, the wall's occupied band reaches the
+// outside beyond the outer face, which must not decide its sign.
+TEST(Reconstruct, NormalsStageOrientsAThinWalledCavityInwards) {
+  const PointSet exact = test::sample_with_normals(test::hollow_box_mesh(0.5, 0.45, 0.25, 4), 40000, 7);
+  PointSet bare = exact;
+  bare.normals.clear();
+  const NormalsResult r = reconstruct_normals(bare);
+  const double wall = 0.05 / average_spacing(exact, 6);
+  ASSERT_GT(wall, 2.0);
+  ASSERT_LT(wall, 4.0);
+  std::size_t against = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i) against += dot(r.points.normals[i], exact.normals[i]) < 0;
+  EXPECT_LT(against, exact.size() / 200) << "walls " << wall << " spacings thick";
+}
+
 // The normals stage on its own gives the normals reconstruct() starts from:
 // oriented outwards on a closed part away from the origin (the stage runs
 // recentred and returns the input's own coordinates), and given consistent
