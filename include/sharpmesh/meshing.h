@@ -185,12 +185,13 @@ std::size_t trim_far_from_points(SurfaceMesh& mesh, const std::vector<Vec3>& poi
 std::size_t remove_components_off_points(SurfaceMesh& mesh, const std::vector<Vec3>& points, double max_distance);
 
 /// Removes the closed connected components, other than the largest, that
-/// enclose a space thinner than `max_thickness` (the ray from nine facets
-/// in ten into the enclosed side meets the component within it): the air
-/// of a gap too narrow for the data, left as a shell of its own where the
-/// implicit function bridged the gap's openings. Returns the number of
-/// facets removed.
-std::size_t remove_thin_shell_components(SurfaceMesh& mesh, double max_thickness);
+/// enclose a space thinner than `max_solid` (solids, by their signed
+/// volume) or `max_cavity` (cavities, facing inwards): the ray from nine
+/// tenths of the area into the enclosed side meets the component within it.
+/// Such a cavity is the air of a gap too narrow for the data, left as a
+/// shell of its own where the implicit function bridged the gap's openings.
+/// Returns the number of facets removed.
+std::size_t remove_thin_shell_components(SurfaceMesh& mesh, double max_solid, double max_cavity);
 
 /// Gaps inside the data are kept, its outer edge is not extended: removes
 /// the facets with no corner and no centroid within `max_distance` of the

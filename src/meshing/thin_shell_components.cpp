@@ -1,10 +1,11 @@
 // Thin shells: an implicit function sampled too coarsely for a gap about one
-// spacing wide (a slot, the space between a part and its neighbour) bridges
-// the gap's openings and leaves the air inside as a closed shell of its own,
-// a second component where the part has one. No data resolves a space
-// narrower than about one and a half average spacings (the thinnest part
-// the pipeline meshes is two spacings thick, issue 36), so such a shell is
-// filled, as the bridge already fills the rest of the gap.
+// or two spacings wide (a slot, a small through-hole) bridges the gap's
+// openings and leaves the air inside as a closed shell of its own, a cavity
+// and a second component where the part has one. Such a shell is filled, as
+// the bridge already fills the rest of the gap. A thin solid of its own is
+// removed only below the thickness the pipeline resolves (two spacings,
+// issue 36); a cavity that thin inside the material is the air of a
+// bridged gap, since the data of a closed void is what a scan cannot see.
 
 #include <algorithm>
 #include <cmath>
@@ -20,10 +21,11 @@ namespace sharpmesh {
 namespace {
 
 /// Whether the closed component `faces` of `mesh` encloses a space thinner
-/// than `max_thickness` from nine tenths of its area: the ray from a facet's
-/// centroid into the enclosed side meets the component again within it.
-/// Rays from the shell's rim run lengthwise, hence the fraction.
-bool encloses_thin_space(const SurfaceMesh& mesh, const std::vector<std::uint32_t>& faces, double max_thickness) {
+/// than `max_solid` (a solid: positive signed volume) or `max_cavity` (a
+/// cavity, facing inwards) from nine tenths of its area: the ray from a
+/// facet's centroid into the enclosed side meets the component again within
+/// it. Rays from the shell's rim run lengthwise, hence the fraction.
+bool encloses_thin_space(const SurfaceMesh& mesh, const std::vector<std::uint32_t>& faces, double max_solid, double max_cavity) {
   SurfaceMesh shell;
   shell.vertices = mesh.vertices;
   for (std::uint32_t f : faces) shell.faces.push_back(mesh.faces[f]);
@@ -33,6 +35,7 @@ bool encloses_thin_space(const SurfaceMesh& mesh, const std::vector<std::uint32_
   for (const Triangle& t : shell.faces)
     volume += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
   const double inward = volume >= 0 ? -1.0 : 1.0;
+  const double max_thickness = volume >= 0 ? max_solid : max_cavity;
   const detail::RayCaster caster(shell);
   double area = 0, thick_area = 0;
   for (const Triangle& t : shell.faces) {
@@ -55,8 +58,9 @@ bool encloses_thin_space(const SurfaceMesh& mesh, const std::vector<std::uint32_
 
 }  // namespace
 
-std::size_t remove_thin_shell_components(SurfaceMesh& mesh, double max_thickness) {
-  if (!(max_thickness > 0) || !std::isfinite(max_thickness)) throw InvalidArgument("thin shell removal: the thickness must be positive");
+std::size_t remove_thin_shell_components(SurfaceMesh& mesh, double max_solid, double max_cavity) {
+  if (!(max_solid > 0 && max_cavity > 0) || !std::isfinite(max_solid) || !std::isfinite(max_cavity))
+    throw InvalidArgument("thin shell removal: the thicknesses must be positive");
   if (mesh.faces.empty()) return 0;
   detail::DisjointSets sets(mesh.vertices.size());
   for (const Triangle& t : mesh.faces)
@@ -82,7 +86,7 @@ std::size_t remove_thin_shell_components(SurfaceMesh& mesh, double max_thickness
     if (e.faces.size() != 2) open[component_of_root[sets.find(mesh.faces[e.faces.front()][0])]] = 1;
   std::vector<char> removed(faces_of.size(), 0);
   for (std::uint32_t c = 0; c < faces_of.size(); ++c)
-    removed[c] = c != largest && !open[c] && encloses_thin_space(mesh, faces_of[c], max_thickness);
+    removed[c] = c != largest && !open[c] && encloses_thin_space(mesh, faces_of[c], max_solid, max_cavity);
   std::vector<Triangle> faces;
   for (std::uint32_t c = 0; c < faces_of.size(); ++c)
     if (!removed[c])

@@ -128,14 +128,16 @@ void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> func
   // the implicit function's, not the data's (a bubble in a gap between
   // nested solids).
   out.repairs.dataless_facets = remove_components_off_points(out.mesh, in.points.points, off_data_distance(out, options));
-  // A gap about one spacing wide whose openings the implicit function
-  // bridged leaves its air as a shell of its own: filled, as the bridge
-  // fills the rest (issue 36). With noise, a space narrower than the noise
+  // A gap one or two spacings wide whose openings the implicit function
+  // bridged leaves its air as a cavity of its own: filled, as the bridge
+  // fills the rest (issue 36); a separate solid goes only below what the
+  // pipeline resolves. With noise, a space narrower than the noise
   // allowance is not resolved either.
   {
     const double noise = options.feature_mode == FeatureMode::Extract ? out.features.noise_estimate : 0.0;
-    const double thinnest = std::max(1.5 * out.average_spacing, options.tuning.noise_deviations * noise);
-    out.repairs.thin_shell_facets = remove_thin_shell_components(out.mesh, thinnest);
+    const double allowance = options.tuning.noise_deviations * noise;
+    out.repairs.thin_shell_facets = remove_thin_shell_components(out.mesh, std::max(1.5 * out.average_spacing, allowance),
+                                                                 std::max(2.5 * out.average_spacing, allowance));
   }
   if (options.trim_distance > 0) {
     StageTimer timer(out.stages, retry_prefix + "trim");

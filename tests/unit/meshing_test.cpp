@@ -352,7 +352,8 @@ TEST(Trim, RemovesOnlyTheComponentsThatCarryNoData) {
 
 // Inside a large sphere: a flat ellipsoid 0.4 thick as a solid and one as
 // a cavity (facing inwards), a sphere 2 thick and an open sheet. At 0.6 the
-// two flat shells go; the thick sphere, the sheet and the largest stay.
+// two flat shells go; the thick sphere, the sheet and the largest stay. A
+// cavity goes up to its own, larger thickness.
 TEST(ThinShells, RemovesClosedComponentsEnclosingTooThinASpace) {
   auto placed = [](SurfaceMesh m, const Vec3& scale, const Vec3& offset, bool inward) {
     for (Vec3& v : m.vertices) v = Vec3{scale[0] * v[0], scale[1] * v[1], scale[2] * v[2]} + offset;
@@ -375,14 +376,19 @@ TEST(ThinShells, RemovesClosedComponentsEnclosingTooThinASpace) {
   for (const SurfaceMesh* part : {&thin_solid, &thick, &thin_cavity, &sheet}) append(mesh, *part);
   const std::size_t kept = outer.faces.size() + thick.faces.size() + sheet.faces.size();
 
-  EXPECT_EQ(remove_thin_shell_components(mesh, 0.6), thin_solid.faces.size() + thin_cavity.faces.size());
+  EXPECT_EQ(remove_thin_shell_components(mesh, 0.6, 0.6), thin_solid.faces.size() + thin_cavity.faces.size());
   EXPECT_EQ(mesh.faces.size(), kept);
-  EXPECT_EQ(remove_thin_shell_components(mesh, 0.6), 0u) << "nothing thin left";
-  EXPECT_EQ(remove_thin_shell_components(mesh, 2.5), thick.faces.size()) << "a sphere 2 thick is thin against 2.5";
+  EXPECT_EQ(remove_thin_shell_components(mesh, 0.6, 0.6), 0u) << "nothing thin left";
+  SurfaceMesh with_cavity = mesh;
+  append(with_cavity, placed(unit, {2, 2, 0.5}, {0, 0, 4}, true));
+  EXPECT_EQ(remove_thin_shell_components(with_cavity, 0.6, 0.6), 0u) << "a cavity 1 thick is not thin against 0.6";
+  EXPECT_EQ(remove_thin_shell_components(with_cavity, 0.6, 1.2), with_cavity.faces.size() - mesh.faces.size());
+  EXPECT_EQ(remove_thin_shell_components(mesh, 2.5, 0.6), thick.faces.size()) << "a sphere 2 thick is thin against 2.5";
 
   SurfaceMesh alone = thin_solid;
-  EXPECT_EQ(remove_thin_shell_components(alone, 0.6), 0u) << "the largest component stays, thin or not";
-  EXPECT_THROW(remove_thin_shell_components(alone, 0.0), InvalidArgument);
+  EXPECT_EQ(remove_thin_shell_components(alone, 0.6, 0.6), 0u) << "the largest component stays, thin or not";
+  EXPECT_THROW(remove_thin_shell_components(alone, 0.0, 0.6), InvalidArgument);
+  EXPECT_THROW(remove_thin_shell_components(alone, 0.6, 0.0), InvalidArgument);
 }
 
 // A sphere with one vertex pushed through to the far side: its fan of
