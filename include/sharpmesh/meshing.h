@@ -190,7 +190,8 @@ std::size_t remove_components_off_points(SurfaceMesh& mesh, const std::vector<Ve
 /// tenths of the area into the enclosed side meets the component within it.
 /// Such a cavity is the air of a gap too narrow for the data, left as a
 /// shell of its own where the implicit function bridged the gap's openings.
-/// Returns the number of facets removed.
+/// A threshold of 0 removes nothing of its kind. Returns the number of
+/// facets removed.
 std::size_t remove_thin_shell_components(SurfaceMesh& mesh, double max_solid, double max_cavity);
 
 /// Gaps inside the data are kept, its outer edge is not extended: removes

@@ -90,6 +90,13 @@ struct ReconstructTuning {
   /// Snapping: a move must not take the facets farther from the points
   /// within this radius [avg].
   double snap_support_radius = 1.5;
+  /// Thin shells: a closed component other than the largest goes when the
+  /// space it encloses is thinner than max(this [avg], the noise allowance)
+  /// over nine tenths of its area: a solid below the two spacings the
+  /// pipeline resolves, a cavity (the air of a gap whose openings the
+  /// implicit function bridged) up to a wider space. 0: none.
+  double thin_solid_max = 1.5;
+  double thin_cavity_max = 2.5;
   /// Throws InvalidArgument naming the field that is out of its range.
   void check() const;
 };

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <unordered_map>
 
 #include "core/mesh_graph.h"
 #include "core/ray_caster.h"
@@ -26,22 +27,32 @@ namespace {
 /// facet's centroid into the enclosed side meets the component again within
 /// it. Rays from the shell's rim run lengthwise, hence the fraction.
 bool encloses_thin_space(const SurfaceMesh& mesh, const std::vector<std::uint32_t>& faces, double max_solid, double max_cavity) {
+  // The shell with its own vertices only: a mesh may hold many small
+  // components, and each is cast against alone.
   SurfaceMesh shell;
-  shell.vertices = mesh.vertices;
-  for (std::uint32_t f : faces) shell.faces.push_back(mesh.faces[f]);
+  std::unordered_map<std::uint32_t, std::uint32_t> local;
+  for (std::uint32_t f : faces) {
+    Triangle t = mesh.faces[f];
+    for (std::uint32_t& v : t) {
+      const auto [it, added] = local.try_emplace(v, static_cast<std::uint32_t>(shell.vertices.size()));
+      if (added) shell.vertices.push_back(mesh.vertices[v]);
+      v = it->second;
+    }
+    shell.faces.push_back(t);
+  }
   // The enclosed side: against the normals when the signed volume is
   // positive (a solid), along them when negative (a cavity).
   double volume = 0;
   for (const Triangle& t : shell.faces)
-    volume += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
+    volume += dot(shell.vertices[t[0]], cross(shell.vertices[t[1]], shell.vertices[t[2]]));
   const double inward = volume >= 0 ? -1.0 : 1.0;
   const double max_thickness = volume >= 0 ? max_solid : max_cavity;
   const detail::RayCaster caster(shell);
   double area = 0, thick_area = 0;
   for (const Triangle& t : shell.faces) {
-    const Vec3& a = mesh.vertices[t[0]];
-    const Vec3& b = mesh.vertices[t[1]];
-    const Vec3& c = mesh.vertices[t[2]];
+    const Vec3& a = shell.vertices[t[0]];
+    const Vec3& b = shell.vertices[t[1]];
+    const Vec3& c = shell.vertices[t[2]];
     const Vec3 n = cross(b - a, c - a);
     const double length = norm(n);
     if (!(length > 0)) continue;
@@ -59,9 +70,9 @@ bool encloses_thin_space(const SurfaceMesh& mesh, const std::vector<std::uint32_
 }  // namespace
 
 std::size_t remove_thin_shell_components(SurfaceMesh& mesh, double max_solid, double max_cavity) {
-  if (!(max_solid > 0 && max_cavity > 0) || !std::isfinite(max_solid) || !std::isfinite(max_cavity))
-    throw InvalidArgument("thin shell removal: the thicknesses must be positive");
-  if (mesh.faces.empty()) return 0;
+  if (!(max_solid >= 0 && max_cavity >= 0) || !std::isfinite(max_solid) || !std::isfinite(max_cavity))
+    throw InvalidArgument("thin shell removal: the thicknesses must be non-negative");
+  if (mesh.faces.empty() || (max_solid == 0 && max_cavity == 0)) return 0;
   detail::DisjointSets sets(mesh.vertices.size());
   for (const Triangle& t : mesh.faces)
     for (int k = 1; k < 3; ++k) sets.unite(t[0], t[k]);

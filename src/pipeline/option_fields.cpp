@@ -69,7 +69,11 @@ std::vector<OptionField<ReconstructTuning>> tuning_fields() {
       member_field("snap_data_distance", "Snapping: data points the mesh misses by more than this + the noise allowance take a vertex",
                    "average spacings", &T::snap_data_distance),
       member_field("snap_support_radius", "Snapping: a move may not take facets away from the points within this radius",
-                   "average spacings", &T::snap_support_radius)};
+                   "average spacings", &T::snap_support_radius),
+      member_field("thin_solid_max", "Thin shells: remove a separate closed solid thinner than this (or the noise allowance, when more)",
+                   "average spacings", &T::thin_solid_max),
+      member_field("thin_cavity_max", "Thin shells: remove a separate closed cavity (a bridged gap's air) thinner than this (or the noise allowance)",
+                   "average spacings", &T::thin_cavity_max)};
 }
 
 std::vector<OptionField<O>> reconstruct_fields() {

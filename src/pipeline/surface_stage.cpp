@@ -135,9 +135,11 @@ void mesh_surface(const PipelineInput& in, std::unique_ptr<ImplicitSurface> func
   // allowance is not resolved either.
   {
     const double noise = options.feature_mode == FeatureMode::Extract ? out.features.noise_estimate : 0.0;
-    const double allowance = options.tuning.noise_deviations * noise;
-    out.repairs.thin_shell_facets = remove_thin_shell_components(out.mesh, std::max(1.5 * out.average_spacing, allowance),
-                                                                 std::max(2.5 * out.average_spacing, allowance));
+    const ReconstructTuning& tuning = options.tuning;
+    const double allowance = tuning.noise_deviations * noise;
+    out.repairs.thin_shell_facets =
+        remove_thin_shell_components(out.mesh, std::max(tuning.thin_solid_max * out.average_spacing, allowance),
+                                     std::max(tuning.thin_cavity_max * out.average_spacing, allowance));
   }
   if (options.trim_distance > 0) {
     StageTimer timer(out.stages, retry_prefix + "trim");

@@ -382,13 +382,14 @@ TEST(ThinShells, RemovesClosedComponentsEnclosingTooThinASpace) {
   SurfaceMesh with_cavity = mesh;
   append(with_cavity, placed(unit, {2, 2, 0.5}, {0, 0, 4}, true));
   EXPECT_EQ(remove_thin_shell_components(with_cavity, 0.6, 0.6), 0u) << "a cavity 1 thick is not thin against 0.6";
+  EXPECT_EQ(remove_thin_shell_components(with_cavity, 0.0, 0.0), 0u) << "0: none";
   EXPECT_EQ(remove_thin_shell_components(with_cavity, 0.6, 1.2), with_cavity.faces.size() - mesh.faces.size());
   EXPECT_EQ(remove_thin_shell_components(mesh, 2.5, 0.6), thick.faces.size()) << "a sphere 2 thick is thin against 2.5";
 
   SurfaceMesh alone = thin_solid;
   EXPECT_EQ(remove_thin_shell_components(alone, 0.6, 0.6), 0u) << "the largest component stays, thin or not";
-  EXPECT_THROW(remove_thin_shell_components(alone, 0.0, 0.6), InvalidArgument);
-  EXPECT_THROW(remove_thin_shell_components(alone, 0.6, 0.0), InvalidArgument);
+  EXPECT_THROW(remove_thin_shell_components(alone, -1.0, 0.6), InvalidArgument);
+  EXPECT_THROW(remove_thin_shell_components(alone, 0.6, -1.0), InvalidArgument);
 }
 
 // A sphere with one vertex pushed through to the far side: its fan of
